@@ -1,0 +1,8 @@
+# Generates ${PROJECT_BINARY_DIR}/generated/hm_version.cpp on every build, rewriting it only when
+# the git hash (with "-dirty" for uncommitted changes) differs, so artefacts name the exact tool.
+set(HM_VERSION_CPP ${PROJECT_BINARY_DIR}/generated/hm_version.cpp)
+add_custom_target(hm_git_version
+  COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR} -DOUT=${HM_VERSION_CPP}
+          -DPROJECT_VERSION=${PROJECT_VERSION} -P ${PROJECT_SOURCE_DIR}/.cmake/WriteVersion.cmake
+  BYPRODUCTS ${HM_VERSION_CPP}
+  COMMENT "hydromodal version stamp")
