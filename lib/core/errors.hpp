@@ -57,8 +57,8 @@ template <typename... Args>
 }  // namespace hm
 
 #if !defined(NDEBUG) || defined(HM_ENABLE_ASSERTIONS)
-#define HM_ASSERT(cond, ...)                                                         \
-  do {                                                                               \
+#define HM_ASSERT(cond, ...)                                                                     \
+  do {                                                                                           \
     if (!(cond)) ::hm::assertion_failed(#cond, __FILE__, __LINE__, fmt::format("" __VA_ARGS__)); \
   } while (0)
 #else

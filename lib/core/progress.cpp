@@ -54,8 +54,8 @@ void Progress::draw(bool final_line) {
   const double rate = elapsed > 0 ? done_ / elapsed : 0.0;
   const double eta = rate > 0 ? (total_ - done_) / rate : 0.0;
   const std::string numbers =
-      fmt::format("{:.4g}/{:.4g} {} ({:.3g} {}/s, elapsed {}, ETA {})", done_, total_, unit_,
-                  rate, unit_, format_duration(elapsed), format_duration(eta));
+      fmt::format("{:.4g}/{:.4g} {} ({:.3g} {}/s, elapsed {}, ETA {})", done_, total_, unit_, rate,
+                  unit_, format_duration(elapsed), format_duration(eta));
   if (tty_) {
     constexpr int width = 30;
     const int filled = static_cast<int>(fraction * width);

@@ -1,0 +1,159 @@
+// Every scene key of hydromodal, declared once: type, default, unit, range, meaning, and the
+// stages whose artefacts depend on it (so a change reruns exactly those stages). The generated
+// reference (`--print-config-reference`) and all validation come from this table.
+#include "io/scene.hpp"
+
+namespace hm::io {
+namespace {
+
+constexpr double inf = 1e300;
+const std::vector<std::string> mesh_stage{"fsi-mesh"};
+const std::vector<std::string> modes_stage{"fsi-modes"};
+const std::vector<std::string> structure_stages{"fsi-mesh", "fsi-modes"};
+
+KeyDecl number(std::string path, std::string def, std::string unit, double min, double max,
+               std::string doc, std::vector<std::string> stages, bool min_excl = false,
+               bool max_excl = false) {
+  KeyDecl d;
+  d.path = std::move(path);
+  d.type = KeyType::number;
+  d.default_text = std::move(def);
+  d.unit = std::move(unit);
+  d.min = min;
+  d.max = max;
+  d.min_exclusive = min_excl;
+  d.max_exclusive = max_excl;
+  d.doc = std::move(doc);
+  d.stages = std::move(stages);
+  return d;
+}
+
+KeyDecl integer(std::string path, std::string def, double min, double max, std::string doc,
+                std::vector<std::string> stages) {
+  KeyDecl d =
+      number(std::move(path), std::move(def), "1", min, max, std::move(doc), std::move(stages));
+  d.type = KeyType::integer;
+  return d;
+}
+
+KeyDecl text(std::string path, std::string def, std::vector<std::string> choices, std::string doc,
+             std::vector<std::string> stages) {
+  KeyDecl d;
+  d.path = std::move(path);
+  d.type = KeyType::string;
+  d.default_text = std::move(def);
+  d.choices = std::move(choices);
+  d.doc = std::move(doc);
+  d.stages = std::move(stages);
+  return d;
+}
+
+KeyDecl vector(std::string path, std::string def, std::string unit, int size, std::string doc,
+               std::vector<std::string> stages, double min = -inf, double max = inf) {
+  KeyDecl d = number(std::move(path), std::move(def), std::move(unit), min, max, std::move(doc),
+                     std::move(stages));
+  d.type = KeyType::vector;
+  d.vector_size = size;
+  return d;
+}
+
+}  // namespace
+
+const std::vector<SectionDecl>& scene_sections() {
+  static const std::vector<SectionDecl> sections{
+      {"case", true, "What the case is."},
+      {"structure", false,
+       "The elastic structure (omit for rigid-only scenes: the structure stages are skipped)."},
+      {"structure.geometry", true, "Where the structure's shape comes from."},
+      {"structure.mesh", true, "Finite-element mesh of the structure (quadratic elements)."},
+      {"structure.group[]", false,
+       "Named boundary groups selected by an axis-aligned box (e.g. `clamped`, `wetted`); every "
+       "boundary node/facet inside the box belongs to the group. Primitives also have the groups "
+       "xmin, xmax, ymin, ymax (, zmin, zmax); .geo files bring their own physical groups."},
+      {"structure.material", true, "Linear isotropic elastic material."},
+      {"modes", false, "Mode extraction (fsi-modes)."},
+  };
+  return sections;
+}
+
+const std::vector<KeyDecl>& scene_keys() {
+  static const std::vector<KeyDecl> keys{
+      // [case]
+      text("case.name", "", {}, "case name, used in reports", {}),
+      integer("case.dimension", "", 2, 3, "2 for plane (x, y) cases, 3 for spatial ones",
+              {"fsi-mesh", "fsi-modes"}),
+      text("case.description", "\"\"", {}, "free text for reports", {}),
+
+      // [structure.geometry]
+      text("structure.geometry.kind", "", {"rectangle", "box", "file"},
+           "rectangle (2-D) or box (3-D) primitive given by origin and size, or a geometry file",
+           mesh_stage),
+      text("structure.geometry.file", "\"\"", {},
+           "geometry file for kind = \"file\", relative to the scene: .geo (gmsh script), "
+           ".step/.stp/.brep/.iges/.igs (CAD), .stl/.obj/.ply (closed surface mesh)",
+           mesh_stage),
+      vector("structure.geometry.origin", "[]", "m", 0,
+             "lowest corner of the rectangle/box primitive", mesh_stage),
+      vector("structure.geometry.size", "[]", "m", 0, "edge lengths of the rectangle/box primitive",
+             mesh_stage, 0.0),
+      number("structure.geometry.scale", "1.0", "1", 0, inf,
+             "factor applied to file coordinates to get metres (0.001 for a file in mm)",
+             mesh_stage, true),
+
+      // [structure.mesh]
+      number("structure.mesh.size", "", "m", 0, inf, "target element edge length", mesh_stage,
+             true),
+      number("structure.mesh.min_quality", "0.1", "1", 0, 1,
+             "elements below this shape quality are reported as slivers", mesh_stage),
+
+      // [[structure.group]]
+      text("structure.group[].name", "", {}, "group name (referenced by other keys)", mesh_stage),
+      vector("structure.group[].min", "", "m", 0, "lower corner of the selection box", mesh_stage),
+      vector("structure.group[].max", "", "m", 0, "upper corner of the selection box", mesh_stage),
+
+      // [structure]
+      text("structure.formulation", "\"plane_strain\"", {"plane_strain", "plane_stress"},
+           "2-D only: plane strain (thick in z) or plane stress (thin plate in its plane)",
+           modes_stage),
+      number("structure.thickness", "1.0", "m", 0, inf,
+             "2-D only: out-of-plane thickness the 2-D mass and stiffness are multiplied by",
+             modes_stage, true),
+      text("structure.clamped", "\"\"", {},
+           "name of the group whose nodes are fixed (all displacement components); empty: the "
+           "structure is free-free",
+           modes_stage),
+
+      // [structure.material]
+      number("structure.material.youngs_modulus", "", "Pa", 0, inf, "Young's modulus E",
+             modes_stage, true),
+      number("structure.material.poisson_ratio", "", "1", -1, 0.5, "Poisson's ratio nu",
+             modes_stage, true, true),
+      number("structure.material.density", "", "kg/m^3", 0, inf, "mass density rho", modes_stage,
+             true),
+
+      // [modes]
+      integer("modes.count", "10", 1, 100000,
+              "number of lowest modes to extract (with max_frequency_hz: the most to return)",
+              modes_stage),
+      number("modes.max_frequency_hz", "0.0", "Hz", 0, inf,
+             "when > 0, extract every mode below this frequency (up to modes.count)", modes_stage),
+      number("modes.damping_ratio", "0.0", "1", 0, inf,
+             "modal damping ratio zeta added to every mode", modes_stage),
+      number("modes.rayleigh_alpha", "0.0", "1/s", 0, inf,
+             "Rayleigh mass-proportional damping: zeta_i += alpha / (2 omega_i)", modes_stage),
+      number("modes.rayleigh_beta", "0.0", "s", 0, inf,
+             "Rayleigh stiffness-proportional damping: zeta_i += beta omega_i / 2", modes_stage),
+      vector("modes.reference_point", "[]", "m", 0,
+             "point the rotational participation factors refer to (default: the origin)",
+             modes_stage),
+      text("modes.solver", "\"arpack\"", {"arpack", "spectra", "dense"},
+           "eigensolver: ARPACK shift-invert Lanczos; Spectra (same operator); dense LAPACK-style "
+           "(small models only)",
+           modes_stage),
+      number("modes.tolerance", "1e-12", "1", 0, 1e-3,
+             "relative convergence tolerance of the Lanczos iteration", modes_stage, true),
+  };
+  return keys;
+}
+
+}  // namespace hm::io

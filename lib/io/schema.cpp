@@ -1,0 +1,206 @@
+#include "io/schema.hpp"
+
+#include <fmt/format.h>
+
+namespace hm::io {
+
+std::string_view dtype_name(DType type) {
+  switch (type) {
+    case DType::f64:
+      return "float64";
+    case DType::i64:
+      return "int64";
+    case DType::str:
+      return "string";
+  }
+  return "?";
+}
+
+static bool path_matches(std::string_view pattern, std::string_view path) {
+  // Component-wise match; a component "*" matches any single name.
+  while (!pattern.empty() || !path.empty()) {
+    const auto cut = [](std::string_view& s) {
+      const auto slash = s.find('/', 1);
+      std::string_view head = s.substr(0, slash);
+      s = slash == std::string_view::npos ? std::string_view{} : s.substr(slash);
+      return head;
+    };
+    const std::string_view p = cut(pattern), q = cut(path);
+    if (p != "/*" && p != q) return false;
+    if (p == "/*" && q.size() < 2) return false;
+  }
+  return true;
+}
+
+const DatasetSpec* SchemaSpec::find(std::string_view dataset_path) const {
+  for (const auto& spec : datasets)
+    if (path_matches(spec.path, dataset_path)) return &spec;
+  return nullptr;
+}
+
+static DatasetSpec optional(DatasetSpec spec) {
+  spec.required = false;
+  return spec;
+}
+
+const SchemaSpec& mesh_schema() {
+  static const SchemaSpec spec{
+      schema::mesh,
+      1,
+      "Structure mesh (quadratic: tri6 in 2-D, tet10 in 3-D; gmsh node order) with named groups, "
+      "its linear boundary surface, and fluid wall surfaces. Written by fsi-mesh.",
+      {
+          {ds::structure_nodes, DType::f64, {"n_nodes", "dim"}, "m", "node coordinates"},
+          {ds::structure_cells,
+           DType::i64,
+           {"n_cells", "nodes_per_cell"},
+           "",
+           "0-based node indices of each cell (tri6: 6, tet10: 10; gmsh order)"},
+          {ds::structure_facets,
+           DType::i64,
+           {"n_facets", "nodes_per_facet"},
+           "",
+           "boundary facets (line3 in 2-D, tri6 in 3-D), 0-based node indices"},
+          optional({std::string(ds::structure_node_groups) + "*",
+                    DType::i64,
+                    {"*"},
+                    "",
+                    "physical group: sorted 0-based indices of its nodes"}),
+          optional({std::string(ds::structure_facet_groups) + "*",
+                    DType::i64,
+                    {"*"},
+                    "",
+                    "physical group: indices into /structure/facets"}),
+          {ds::structure_surface_vertices,
+           DType::f64,
+           {"n_surface_vertices", "dim"},
+           "m",
+           "linear boundary surface: vertices"},
+          {ds::structure_surface_cells,
+           DType::i64,
+           {"n_surface_cells", "dim"},
+           "",
+           "linear boundary surface: segments (2-D) or triangles (3-D)"},
+          {ds::structure_surface_node,
+           DType::i64,
+           {"n_surface_vertices"},
+           "",
+           "volume node index of each surface vertex"},
+          {ds::structure_quality,
+           DType::f64,
+           {"n_cells"},
+           "1",
+           "element shape quality in [0, 1] (1: equilateral)"},
+          optional({std::string(ds::walls) + "*/vertices",
+                    DType::f64,
+                    {"*", "dim"},
+                    "m",
+                    "fluid wall surface: vertices"}),
+          optional(
+              {std::string(ds::walls) + "*/cells",
+               DType::i64,
+               {"*", "dim"},
+               "",
+               "fluid wall surface: segments (2-D) or triangles (3-D); normals into the fluid"}),
+      }};
+  return spec;
+}
+
+const SchemaSpec& modes_schema() {
+  static const SchemaSpec spec{
+      schema::modes,
+      1,
+      "Natural frequencies and mass-normalised mode shapes (Phi^T M Phi = I) of one structure, "
+      "with invariant checks and participation factors. Written by fsi-modes.",
+      {
+          {ds::eigenvalues, DType::f64, {"n_modes"}, "rad^2/s^2", "eigenvalues lambda = omega^2"},
+          {ds::omega, DType::f64, {"n_modes"}, "rad/s", "angular natural frequencies"},
+          {ds::frequencies_hz, DType::f64, {"n_modes"}, "Hz", "natural frequencies"},
+          {ds::damping_ratio, DType::f64, {"n_modes"}, "1", "modal damping ratio zeta"},
+          {ds::shapes,
+           DType::f64,
+           {"n_modes", "n_nodes", "dim"},
+           "1/sqrt(kg)",
+           "mass-normalised mode shapes on every node"},
+          {ds::residual, DType::f64, {"n_modes"}, "1", "||K phi - lambda M phi|| / ||K phi||"},
+          {ds::orthogonality_error,
+           DType::f64,
+           {"n_modes"},
+           "1",
+           "max_j |(Phi^T M Phi - I)_ij| for mode i"},
+          {ds::participation_translation,
+           DType::f64,
+           {"n_modes", "dim"},
+           "sqrt(kg)",
+           "Phi^T M T for unit translations along x, y (, z)"},
+          {ds::participation_rotation,
+           DType::f64,
+           {"n_modes", "n_rotations"},
+           "sqrt(kg)*m",
+           "Phi^T M R for unit rotations about the reference point (z in 2-D; x, y, z in 3-D)"},
+          {ds::effective_mass_translation,
+           DType::f64,
+           {"n_modes", "dim"},
+           "kg",
+           "effective modal masses (participation squared)"},
+          {ds::surface_shapes,
+           DType::f64,
+           {"n_modes", "n_surface_vertices", "dim"},
+           "1/sqrt(kg)",
+           "mode shapes on the linear boundary surface vertices"},
+          {ds::modes_nodes, DType::f64, {"n_nodes", "dim"}, "m", "copy of the structure nodes"},
+          {ds::modes_cells, DType::i64, {"n_cells", "nodes_per_cell"}, "", "copy of the cells"},
+          {ds::modes_surface_vertices,
+           DType::f64,
+           {"n_surface_vertices", "dim"},
+           "m",
+           "copy of the boundary surface vertices"},
+          {ds::modes_surface_cells,
+           DType::i64,
+           {"n_surface_cells", "dim"},
+           "",
+           "copy of the boundary surface cells"},
+          {ds::modes_surface_node,
+           DType::i64,
+           {"n_surface_vertices"},
+           "",
+           "volume node of each surface vertex"},
+      }};
+  return spec;
+}
+
+std::vector<const SchemaSpec*> all_schemas() {
+  return {&mesh_schema(), &modes_schema()};
+}
+
+const SchemaSpec* find_schema(std::string_view name) {
+  for (const SchemaSpec* spec : all_schemas())
+    if (spec->name == name) return spec;
+  return nullptr;
+}
+
+std::string schema_reference_markdown() {
+  std::string out =
+      "# Artefact schemas\n\nGenerated by `fsi-inspect --print-schemas`. Every artefact carries "
+      "the "
+      "root attributes `schema`, `schema_version`, `stage`, `tool_version`, `created_utc`, "
+      "`parameters` (canonical TOML), `parameters_sha256`, `status`, and for every input "
+      "`input:<role>:path` and `input:<role>:sha256`. Every dataset carries `unit` and "
+      "`description` attributes.\n";
+  for (const SchemaSpec* spec : all_schemas()) {
+    out += fmt::format(
+        "\n## `{}` version {}\n\n{}\n\n| dataset | type | shape | unit | meaning |\n"
+        "|---|---|---|---|---|\n",
+        spec->name, spec->version, spec->doc);
+    for (const auto& d : spec->datasets) {
+      std::string shape;
+      for (const auto& s : d.shape) shape += (shape.empty() ? "" : " × ") + s;
+      out +=
+          fmt::format("| `{}`{} | {} | {} | {} | {} |\n", d.path, d.required ? "" : " (optional)",
+                      dtype_name(d.type), shape, d.unit.empty() ? "—" : d.unit, d.doc);
+    }
+  }
+  return out;
+}
+
+}  // namespace hm::io

@@ -1,0 +1,100 @@
+#pragma once
+// The artefact schemas of hydromodal: every dataset each artefact kind holds, with its shape,
+// type, unit and meaning. This header and schema.cpp are the single place where dataset and
+// attribute names are spelled; `fsi-inspect --print-schemas` prints this as the reference.
+//
+// Shapes are lists of symbolic extents ("n_nodes", "dim") or literal numbers ("3"). A reader
+// checks that every required dataset exists and that a symbol means the same extent in every
+// dataset of one file.
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace hm::io {
+
+enum class DType { f64, i64, str };
+std::string_view dtype_name(DType type);
+
+struct DatasetSpec {
+  std::string path;  ///< absolute HDF5 path; a final "*" matches any child name
+  DType type = DType::f64;
+  std::vector<std::string> shape;  ///< symbolic extents, outermost first
+  std::string unit;                ///< SI unit, "1" for dimensionless, "" for indices/labels
+  std::string doc;
+  bool required = true;
+};
+
+struct SchemaSpec {
+  std::string name;  ///< e.g. "hydromodal.modes"
+  int version = 1;
+  std::string doc;
+  std::vector<DatasetSpec> datasets;
+
+  const DatasetSpec* find(std::string_view dataset_path) const;
+};
+
+/// Root attribute names every artefact carries (provenance).
+namespace attr {
+inline constexpr const char* schema = "schema";
+inline constexpr const char* schema_version = "schema_version";
+inline constexpr const char* stage = "stage";
+inline constexpr const char* tool_version = "tool_version";
+inline constexpr const char* created_utc = "created_utc";
+inline constexpr const char* parameters = "parameters";                ///< canonical TOML text
+inline constexpr const char* parameters_sha256 = "parameters_sha256";  ///< of `parameters`
+inline constexpr const char* input_prefix =
+    "input:";                                    ///< "input:<role>:path", "input:<role>:sha256"
+inline constexpr const char* status = "status";  ///< "ok" or a failure description
+inline constexpr const char* unit = "unit";      ///< on every dataset
+inline constexpr const char* description = "description";  ///< on every dataset
+}  // namespace attr
+
+/// Schema names and the datasets of each artefact kind.
+namespace schema {
+inline constexpr const char* mesh = "hydromodal.mesh";
+inline constexpr const char* modes = "hydromodal.modes";
+inline constexpr const char* mapped_modes = "hydromodal.mapped_modes";
+inline constexpr const char* results = "hydromodal.results";
+}  // namespace schema
+
+namespace ds {
+// hydromodal.mesh
+inline constexpr const char* structure_nodes = "/structure/nodes";
+inline constexpr const char* structure_cells = "/structure/cells";
+inline constexpr const char* structure_facets = "/structure/facets";
+inline constexpr const char* structure_node_groups = "/structure/node_groups/";    // + name
+inline constexpr const char* structure_facet_groups = "/structure/facet_groups/";  // + name
+inline constexpr const char* structure_surface_vertices = "/structure/surface/vertices";
+inline constexpr const char* structure_surface_cells = "/structure/surface/cells";
+inline constexpr const char* structure_surface_node = "/structure/surface/volume_node";
+inline constexpr const char* structure_quality = "/structure/quality";
+inline constexpr const char* walls = "/walls/";  // + name + "/vertices" | "/cells"
+// hydromodal.modes
+inline constexpr const char* eigenvalues = "/modes/eigenvalues";
+inline constexpr const char* omega = "/modes/omega";
+inline constexpr const char* frequencies_hz = "/modes/frequencies_hz";
+inline constexpr const char* damping_ratio = "/modes/damping_ratio";
+inline constexpr const char* shapes = "/modes/shapes";
+inline constexpr const char* residual = "/modes/relative_residual";
+inline constexpr const char* orthogonality_error = "/modes/orthogonality_error";
+inline constexpr const char* participation_translation = "/modes/participation_translation";
+inline constexpr const char* participation_rotation = "/modes/participation_rotation";
+inline constexpr const char* effective_mass_translation = "/modes/effective_mass_translation";
+inline constexpr const char* surface_shapes = "/modes/surface_shapes";
+inline constexpr const char* modes_nodes = "/mesh/nodes";
+inline constexpr const char* modes_cells = "/mesh/cells";
+inline constexpr const char* modes_surface_vertices = "/mesh/surface/vertices";
+inline constexpr const char* modes_surface_cells = "/mesh/surface/cells";
+inline constexpr const char* modes_surface_node = "/mesh/surface/volume_node";
+}  // namespace ds
+
+const SchemaSpec& mesh_schema();
+const SchemaSpec& modes_schema();
+/// Every schema hydromodal writes (for fsi-inspect and the generated reference).
+std::vector<const SchemaSpec*> all_schemas();
+const SchemaSpec* find_schema(std::string_view name);
+
+/// The schema reference as Markdown (generated; README links to it).
+std::string schema_reference_markdown();
+
+}  // namespace hm::io

@@ -1,0 +1,39 @@
+#pragma once
+// The one main() of every stage: parse arguments, set up logging and interrupt cleanup, call
+// one library function, and map errors to the documented exit codes
+//   0 ok · 1 usage · 2 invalid input · 3 numerical failure · 4 internal error (a bug).
+// CLI11 is compiled once, in stage_main.cpp (it costs ~8 s per translation unit).
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/log.hpp"
+
+namespace hm::stages {
+
+struct StageInfo {
+  std::string name;                  ///< executable name, e.g. "fsi-modes"
+  std::string summary;               ///< one line for --help
+  std::string positional = "SCENE";  ///< name of the positional argument ("" for none)
+  std::string positional_help = "scene file (TOML)";
+  /// Input artefact options: option name without dashes → help ("mesh" → --mesh FILE).
+  std::vector<std::pair<std::string, std::string>> inputs;
+  bool has_output = true;  ///< -o/--output FILE
+  bool has_validate = true;
+  std::vector<std::pair<std::string, std::string>> flags;  ///< extra boolean flags → help
+};
+
+struct StageArgs {
+  std::string positional;
+  std::map<std::string, std::string> inputs;
+  std::string output;
+  bool validate = false;
+  std::map<std::string, bool> flags;
+  Verbosity verbosity = Verbosity::normal;
+};
+
+int run_stage(int argc, char** argv, const StageInfo& info,
+              const std::function<void(const StageArgs&)>& body);
+
+}  // namespace hm::stages
