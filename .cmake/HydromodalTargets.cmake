@@ -2,7 +2,7 @@
 
 add_library(hm_warnings INTERFACE)
 target_compile_options(hm_warnings INTERFACE -Wall -Wextra -Wpedantic -Wshadow -Wnon-virtual-dtor
-                                             -Wno-psabi)
+                                             -Wno-psabi -Wno-missing-field-initializers)
 if(HM_WERROR)
   target_compile_options(hm_warnings INTERFACE -Werror)
 endif()

@@ -64,7 +64,7 @@ std::string range_text(const KeyDecl& d) {
 }
 
 std::string format_value(const toml::node& node) {
-  if (auto v = node.as_floating_point()) return fmt::format("{:.17g}", v->get());
+  if (auto v = node.as_floating_point()) return fmt::format("{}", v->get());  // shortest exact
   if (auto v = node.as_integer()) return fmt::format("{}", v->get());
   if (auto v = node.as_boolean()) return v->get() ? "true" : "false";
   if (auto v = node.as_string()) return fmt::format("\"{}\"", v->get());

@@ -93,12 +93,9 @@ const std::vector<KeyDecl>& scene_keys() {
            ".step/.stp/.brep/.iges/.igs (CAD), .stl/.obj/.ply (closed surface mesh)",
            mesh_stage),
       vector("structure.geometry.origin", "[]", "m", 0,
-             "lowest corner of the rectangle/box primitive", mesh_stage),
-      vector("structure.geometry.size", "[]", "m", 0, "edge lengths of the rectangle/box primitive",
+             "lowest corner of the rectangle/box primitive (required for those kinds)", mesh_stage),
+      vector("structure.geometry.size", "[]", "m", 0, "edge lengths of the rectangle/box primitive (required for those kinds)",
              mesh_stage, 0.0),
-      number("structure.geometry.scale", "1.0", "1", 0, inf,
-             "factor applied to file coordinates to get metres (0.001 for a file in mm)",
-             mesh_stage, true),
 
       // [structure.mesh]
       number("structure.mesh.size", "", "m", 0, inf, "target element edge length", mesh_stage,

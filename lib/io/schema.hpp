@@ -61,6 +61,7 @@ namespace ds {
 // hydromodal.mesh
 inline constexpr const char* structure_nodes = "/structure/nodes";
 inline constexpr const char* structure_cells = "/structure/cells";
+inline constexpr const char* structure_cells_vtk = "/structure/cells_vtk";
 inline constexpr const char* structure_facets = "/structure/facets";
 inline constexpr const char* structure_node_groups = "/structure/node_groups/";    // + name
 inline constexpr const char* structure_facet_groups = "/structure/facet_groups/";  // + name
@@ -83,6 +84,7 @@ inline constexpr const char* effective_mass_translation = "/modes/effective_mass
 inline constexpr const char* surface_shapes = "/modes/surface_shapes";
 inline constexpr const char* modes_nodes = "/mesh/nodes";
 inline constexpr const char* modes_cells = "/mesh/cells";
+inline constexpr const char* modes_cells_vtk = "/mesh/cells_vtk";
 inline constexpr const char* modes_surface_vertices = "/mesh/surface/vertices";
 inline constexpr const char* modes_surface_cells = "/mesh/surface/cells";
 inline constexpr const char* modes_surface_node = "/mesh/surface/volume_node";

@@ -1,0 +1,234 @@
+#include "driver/modes_stage.hpp"
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "core/log.hpp"
+#include "driver/structure_io.hpp"
+#include "fem/assembly.hpp"
+#include "fem/dof_map.hpp"
+#include "io/artefact.hpp"
+#include "io/xdmf.hpp"
+#include "modal/eigen_solve.hpp"
+#include "modal/modes.hpp"
+
+namespace hm::driver {
+namespace {
+
+namespace ds = io::ds;
+
+void require_structure(const io::Scene& scene) {
+  if (!scene.has("structure"))
+    input_error("{}: the scene has no [structure] section: a rigid-only scene needs no modes",
+                scene.file().string());
+}
+
+fem::ElasticModel elastic_model(const io::Scene& scene) {
+  fem::ElasticModel model;
+  model.material = {scene.number("structure.material.youngs_modulus"),
+                    scene.number("structure.material.poisson_ratio"),
+                    scene.number("structure.material.density")};
+  model.plane = scene.string("structure.formulation") == "plane_stress"
+                    ? fem::PlaneAssumption::plane_stress
+                    : fem::PlaneAssumption::plane_strain;
+  model.thickness_m = scene.number("structure.thickness");
+  return model;
+}
+
+modal::ModeRequest mode_request(const io::Scene& scene) {
+  modal::ModeRequest request;
+  request.count = static_cast<int>(scene.integer("modes.count"));
+  if (const double f_max = scene.number("modes.max_frequency_hz"); f_max > 0) {
+    request.max_frequency_hz = f_max;
+    request.count = 0;
+    request.context = "modes.max_frequency_hz";
+  } else {
+    request.context = "modes.count";
+  }
+  return request;
+}
+
+modal::EigenOptions eigen_options(const io::Scene& scene) {
+  modal::EigenOptions options;
+  const std::string solver = scene.string("modes.solver");
+  options.backend = solver == "spectra" ? modal::EigenBackend::spectra
+                    : solver == "dense" ? modal::EigenBackend::dense
+                                        : modal::EigenBackend::arpack;
+  options.lanczos.tolerance = scene.number("modes.tolerance");
+  return options;
+}
+
+modal::Damping damping(const io::Scene& scene) {
+  modal::Damping d;
+  const double zeta = scene.number("modes.damping_ratio");
+  const double alpha = scene.number("modes.rayleigh_alpha"), beta = scene.number("modes.rayleigh_beta");
+  if (alpha > 0 || beta > 0) {
+    if (zeta > 0)
+      input_error("{}: give either modes.damping_ratio or modes.rayleigh_alpha/beta, not both",
+                  scene.file().string());
+    d.kind = modal::Damping::Kind::rayleigh;
+    d.alpha_per_s = alpha;
+    d.beta_s = beta;
+    d.context = "modes.rayleigh_alpha/beta";
+  } else if (zeta > 0) {
+    d.kind = modal::Damping::Kind::uniform;
+    d.ratio = zeta;
+    d.context = "modes.damping_ratio";
+  }
+  return d;
+}
+
+Eigen::Vector3d reference_point(const io::Scene& scene) {
+  Eigen::Vector3d point = Eigen::Vector3d::Zero();
+  const Eigen::VectorXd given = scene.vector("modes.reference_point");
+  if (given.size() > 0) point.head(given.size()) = given;
+  return point;
+}
+
+std::vector<std::string> clamped_groups(const io::Scene& scene) {
+  const std::string clamped = scene.string("structure.clamped");
+  return clamped.empty() ? std::vector<std::string>{} : std::vector<std::string>{clamped};
+}
+
+/// max_j |(ΦᵀMΦ − I)_ij| for every mode i.
+Eigen::VectorXd orthogonality_per_mode(const modal::ModeSet& modes, const fem::SparseMatrix& mass) {
+  const Eigen::MatrixXd gram = modes.shapes.transpose() * (mass * modes.shapes);
+  const Eigen::MatrixXd error = gram - Eigen::MatrixXd::Identity(gram.rows(), gram.cols());
+  return error.cwiseAbs().rowwise().maxCoeff();
+}
+
+/// [n_modes, n_nodes, dim] row-major from the n_dofs × n_modes shapes (DOF = dim·node + c).
+io::MatrixRM stacked_shapes(const Eigen::MatrixXd& shapes) { return io::MatrixRM(shapes.transpose()); }
+
+io::MatrixRM surface_shapes(const Eigen::MatrixXd& shapes, const std::vector<mesh::Index>& volume_node,
+                            int dim) {
+  io::MatrixRM out(shapes.cols(), static_cast<Eigen::Index>(volume_node.size()) * dim);
+  for (Eigen::Index m = 0; m < shapes.cols(); ++m)
+    for (std::size_t v = 0; v < volume_node.size(); ++v)
+      for (int c = 0; c < dim; ++c)
+        out(m, static_cast<Eigen::Index>(v) * dim + c) = shapes(volume_node[v] * dim + c, m);
+  return out;
+}
+
+void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes, const Eigen::VectorXd& orthogonality,
+                 const MeshArtefact& mesh) {
+  const auto n_modes = static_cast<std::uint64_t>(modes.count());
+  const auto n_nodes = static_cast<std::uint64_t>(mesh.structure.node_count());
+  const auto dim = static_cast<std::uint64_t>(mesh.structure.dim);
+  const auto n_surface = static_cast<std::uint64_t>(mesh.surface.volume_node.size());
+  w.write_vector(ds::eigenvalues, modes.eigenvalues);
+  w.write_vector(ds::omega, modes.omega);
+  w.write_vector(ds::frequencies_hz, modes.frequency_hz);
+  w.write_vector(ds::damping_ratio, modes.damping_ratio);
+  w.write(ds::shapes, stacked_shapes(modes.shapes).data(), {n_modes, n_nodes, dim});
+  w.write(ds::surface_shapes, surface_shapes(modes.shapes, mesh.surface.volume_node, mesh.structure.dim).data(),
+          {n_modes, n_surface, dim});
+  w.write_vector(ds::residual, modes.residuals);
+  w.write_vector(ds::orthogonality_error, orthogonality);
+  w.write(ds::participation_translation, io::MatrixRM(modes.translational_participation));
+  w.write(ds::participation_rotation, io::MatrixRM(modes.rotational_participation));
+  w.write(ds::effective_mass_translation, io::MatrixRM(modes.translational_effective_mass));
+  w.write(ds::modes_nodes, io::MatrixRM(mesh.structure.nodes));
+  w.write(ds::modes_cells, io::IndexMatrixRM(mesh.structure.cells));
+  if (mesh.structure.dim == 3) w.write(ds::modes_cells_vtk, io::IndexMatrixRM(cells_in_vtk_order(mesh.structure)));
+  w.write(ds::modes_surface_vertices, io::MatrixRM(mesh.surface.surface.vertices));
+  w.write(ds::modes_surface_cells, io::IndexMatrixRM(mesh.surface.surface.cells));
+  w.write(ds::modes_surface_node, mesh.surface.volume_node);
+}
+
+void write_solver_attributes(io::ArtefactWriter& w, const modal::ModeSet& modes) {
+  const modal::SolverInfo& s = modes.solver;
+  w.set_attribute("solver_backend", s.backend);
+  w.set_attribute("solver_factorisation", s.factorisation);
+  w.set_attribute("solver_status", s.status);
+  w.set_attribute("modes_requested", static_cast<std::int64_t>(s.requested));
+  w.set_attribute("modes_converged", static_cast<std::int64_t>(s.converged));
+  w.set_attribute("shift_rad2_s2", s.shift);
+  w.set_attribute("lanczos_restarts", static_cast<std::int64_t>(s.iterations));
+  w.set_attribute("operator_applications", static_cast<std::int64_t>(s.op_applications));
+  w.set_attribute("factorisation_seconds", s.factorisation_seconds);
+  w.set_attribute("lanczos_seconds", s.lanczos_seconds);
+  w.set_attribute("max_relative_residual", modes.residuals.size() ? modes.residuals.maxCoeff() : 0.0);
+  w.set_attribute("max_orthogonality_error", modes.orthogonality_error);
+}
+
+void write_modes_xdmf(const std::filesystem::path& h5, const MeshArtefact& mesh, const modal::ModeSet& modes) {
+  const auto& m = mesh.structure;
+  const auto n_nodes = static_cast<std::uint64_t>(m.node_count());
+  io::XdmfGrid grid{.name = "modes",
+                    .dim = m.dim,
+                    .topology = m.dim == 2 ? "Tri_6" : "Tet_10",
+                    .cells_dataset = m.dim == 2 ? ds::modes_cells : ds::modes_cells_vtk,
+                    .cells = static_cast<std::uint64_t>(m.cells.rows()),
+                    .nodes_per_cell = static_cast<std::uint64_t>(m.nodes_per_cell()),
+                    .nodes_dataset = ds::modes_nodes,
+                    .nodes = n_nodes,
+                    .fields = {}};
+  for (int i = 0; i < modes.count(); ++i)
+    grid.fields.push_back({fmt::format("mode_{}_{:.4g}Hz", i + 1, modes.frequency_hz[i]), true, ds::shapes,
+                           {static_cast<std::uint64_t>(modes.count()), n_nodes, static_cast<std::uint64_t>(m.dim)},
+                           i});
+  io::write_xdmf(std::filesystem::path(h5).replace_extension(".xdmf"), h5, {grid});
+}
+
+void log_frequency_table(const modal::ModeSet& modes, const Eigen::VectorXd& orthogonality) {
+  std::string table = "  mode   frequency [Hz]   omega [rad/s]   zeta     residual   orthogonality\n";
+  for (int i = 0; i < modes.count(); ++i)
+    table += fmt::format("  {:>4}   {:>14.6f}   {:>13.5f}   {:<6.4g}   {:.2e}   {:.2e}\n", i + 1,
+                         modes.frequency_hz[i], modes.omega[i], modes.damping_ratio[i],
+                         modes.residuals[i], orthogonality[i]);
+  spdlog::info("fsi-modes: {} mode(s) ({} backend, {} factorisation, {} operator applications)\n{}",
+               modes.count(), modes.solver.backend, modes.solver.factorisation,
+               modes.solver.op_applications, table);
+}
+
+}  // namespace
+
+void validate_modes_scene(const io::Scene& scene) {
+  require_structure(scene);
+  fem::validate(elastic_model(scene), scene.dimension(), "structure");
+  (void)damping(scene);
+}
+
+void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_artefact,
+                     const std::filesystem::path& output) {
+  validate_modes_scene(scene);
+  const io::ArtefactReader reader(mesh_artefact, io::mesh_schema());
+  const MeshArtefact mesh = read_structure_mesh(reader);
+  if (mesh.structure.dim != scene.dimension())
+    input_error("'{}' holds a {}-D mesh but {} says case.dimension = {}; rerun fsi-mesh",
+                mesh_artefact.string(), mesh.structure.dim, scene.file().string(), scene.dimension());
+
+  const fem::SystemMatrices system = fem::assemble(mesh.structure, elastic_model(scene), "structure.material");
+  const std::vector<std::string> clamped = clamped_groups(scene);
+  const fem::DofMap dofs = fem::DofMap::clamp_groups(mesh.structure, clamped, "structure.clamped");
+  spdlog::info("fsi-modes: {} DOFs ({} free, {} clamped)", dofs.full_count(), dofs.free_count(),
+               dofs.clamped_count());
+  const modal::EigenSolution solution = modal::solve_eigenproblem(
+      dofs.reduce(system.stiffness), dofs.reduce(system.mass), mode_request(scene), eigen_options(scene));
+  const modal::ModeSet modes = modal::build_mode_set(solution, system, dofs, mesh.structure,
+                                                     reference_point(scene), damping(scene));
+  const Eigen::VectorXd orthogonality = orthogonality_per_mode(modes, system.mass);
+  const bool converged = solution.pairs.status == modal::EigenStatus::converged;
+
+  const std::filesystem::path target =
+      converged ? output : std::filesystem::path(output).replace_extension(".failed.h5");
+  io::ArtefactWriter writer(target, io::modes_schema(), "fsi-modes", scene.parameters_for("fsi-modes"),
+                            {io::input_record("scene", scene.file()), io::input_record("mesh", mesh_artefact)});
+  write_modes(writer, modes, orthogonality, mesh);
+  write_solver_attributes(writer, modes);
+  if (!converged)
+    writer.set_attribute(io::attr::status, fmt::format("{}: {} of {} modes converged ({})", modes.solver.status,
+                                                       modes.solver.converged, modes.solver.requested,
+                                                       modes.solver.message));
+  writer.commit();
+  if (!converged)
+    numerical_error("fsi-modes: the eigensolver did not converge ({}: {} of {} modes; {}); the converged "
+                    "modes are in '{}', nothing was written at '{}'",
+                    modes.solver.status, modes.solver.converged, modes.solver.requested, modes.solver.message,
+                    target.string(), output.string());
+  write_modes_xdmf(output, mesh, modes);
+  log_frequency_table(modes, orthogonality);
+}
+
+}  // namespace hm::driver

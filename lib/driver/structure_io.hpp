@@ -1,0 +1,30 @@
+#pragma once
+// The structure mesh in artefacts: written by fsi-mesh (hydromodal.mesh, under /structure) and
+// copied by fsi-modes (hydromodal.modes, under /mesh) so that an archived mode set carries the
+// mesh it was computed on.
+#include <string>
+
+#include "io/artefact.hpp"
+#include "mesh/boundary.hpp"
+#include "mesh/types.hpp"
+
+namespace hm::driver {
+
+/// Cells in VTK/XDMF node order (tet10: gmsh nodes 8 and 9 swapped; tri6 unchanged).
+mesh::IndexMatrix cells_in_vtk_order(const mesh::StructureMesh& mesh);
+
+/// Writes nodes, cells, facets, groups, the linear boundary surface and the cell quality.
+void write_structure_mesh(io::ArtefactWriter& writer, const mesh::StructureMesh& mesh,
+                          const mesh::BoundarySurface& surface, const Eigen::VectorXd& quality);
+
+struct MeshArtefact {
+  mesh::StructureMesh structure;
+  mesh::BoundarySurface surface;
+};
+/// Reads the structure of a hydromodal.mesh artefact (checked against its schema).
+MeshArtefact read_structure_mesh(const io::ArtefactReader& reader);
+
+/// XDMF sidecar of a mesh artefact: the structure with its quality field.
+void write_mesh_xdmf(const std::filesystem::path& h5_path, const mesh::StructureMesh& mesh);
+
+}  // namespace hm::driver
