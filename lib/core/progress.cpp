@@ -38,6 +38,7 @@ void Progress::update(double done) {
 void Progress::finish() {
   if (finished_) return;
   finished_ = true;
+  done_ = total_;
   if (!quiet_) draw(true);
 }
 

@@ -15,7 +15,7 @@ class Progress {
   Progress& operator=(const Progress&) = delete;
 
   void update(double done);
-  void finish();
+  void finish();  ///< the work is complete: draws the final 100 % line
 
   static double plain_interval_s;
 
