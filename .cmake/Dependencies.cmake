@@ -34,6 +34,9 @@ hm_require(spdlog_FOUND libspdlog-dev "spdlog")
 find_package(nlohmann_json 3 QUIET)
 hm_require(nlohmann_json_FOUND nlohmann-json3-dev "nlohmann-json")
 
+find_package(nanoflann QUIET)
+hm_require(nanoflann_FOUND libnanoflann-dev "nanoflann")
+
 find_package(OpenSSL QUIET COMPONENTS Crypto)
 hm_require(OPENSSL_FOUND libssl-dev "OpenSSL libcrypto (SHA-256 of inputs)")
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <atomic>
+#include <bitset>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -74,9 +76,9 @@ void validate_mesh(const mesh::StructureMesh& mesh, std::string_view context) {
     input_error("{}: mesh dimension {} is invalid; it must be 2 (tri6) or 3 (tet10)", context,
                 mesh.dim);
   if (mesh.nodes.cols() != mesh.dim || mesh.cells.cols() != mesh.nodes_per_cell())
-    input_error("{}: a {}-D mesh needs {} coordinates per node and {} nodes per cell; got {} and {}",
-                context, mesh.dim, mesh.dim, mesh.nodes_per_cell(), mesh.nodes.cols(),
-                mesh.cells.cols());
+    input_error(
+        "{}: a {}-D mesh needs {} coordinates per node and {} nodes per cell; got {} and {}",
+        context, mesh.dim, mesh.dim, mesh.nodes_per_cell(), mesh.nodes.cols(), mesh.cells.cols());
   if (mesh.cells.rows() == 0) input_error("{}: the mesh has no cells", context);
   if (mesh.cells.size() > 0 &&
       (mesh.cells.minCoeff() < 0 || mesh.cells.maxCoeff() >= mesh.node_count()))
@@ -91,7 +93,30 @@ Eigen::MatrixXd cell_coordinates(const mesh::StructureMesh& mesh, Index cell) {
   return coords;
 }
 
-/// Adds one element matrix into the values of the global pattern (thread-safe).
+/// Greedy colouring of the cells such that no two cells of a colour share a node: cells of a
+/// colour are scattered in parallel without atomics, colours one after the other, so every
+/// matrix entry is summed in the same order whatever the thread count (bitwise reproducible).
+std::vector<std::vector<Index>> colour_cells(const mesh::StructureMesh& mesh) {
+  constexpr std::size_t kMaxColours = 512;
+  std::vector<std::bitset<kMaxColours>> used(static_cast<std::size_t>(mesh.node_count()));
+  std::vector<std::vector<Index>> colours;
+  for (Index c = 0; c < mesh.cells.rows(); ++c) {
+    std::bitset<kMaxColours> taken;
+    for (Index a = 0; a < mesh.cells.cols(); ++a)
+      taken |= used[static_cast<std::size_t>(mesh.cells(c, a))];
+    std::size_t colour = 0;
+    while (taken[colour]) ++colour;
+    HM_ASSERT(colour < kMaxColours, "cell {} needs more than {} colours", c, kMaxColours);
+    if (colour == colours.size()) colours.emplace_back();
+    colours[colour].push_back(c);
+    for (Index a = 0; a < mesh.cells.cols(); ++a)
+      used[static_cast<std::size_t>(mesh.cells(c, a))].set(colour);
+  }
+  return colours;
+}
+
+/// Adds one element matrix into the values of the global pattern (no other thread may touch
+/// the nodes of this cell meanwhile).
 void scatter(const BlockPattern& pattern, const mesh::StructureMesh& mesh, Index cell,
              const Eigen::MatrixXd& local, std::vector<double>& values) {
   const int dim = mesh.dim;
@@ -101,9 +126,7 @@ void scatter(const BlockPattern& pattern, const mesh::StructureMesh& mesh, Index
         for (int r = 0; r < dim; ++r) {
           const double v = local(dim * a + r, dim * b + c);
           if (v == 0.0) continue;
-          double& target = values[pattern.position(mesh.cells(cell, a), r, mesh.cells(cell, b), c)];
-#pragma omp atomic
-          target += v;
+          values[pattern.position(mesh.cells(cell, a), r, mesh.cells(cell, b), c)] += v;
         }
 }
 
@@ -118,18 +141,23 @@ SystemMatrices assemble(const mesh::StructureMesh& mesh, const ElasticModel& mod
   const Eigen::MatrixXd d = elasticity_matrix(model, mesh.dim);
   const double thickness = mesh.dim == 2 ? model.thickness_m : 1.0;
   std::atomic<Index> inverted_cell{-1};
+  for (const std::vector<Index>& cells : colour_cells(mesh)) {
+    const auto count = static_cast<std::int64_t>(cells.size());
 #pragma omp parallel for schedule(dynamic, 64)
-  for (Index cell = 0; cell < mesh.cells.rows(); ++cell) {
-    const ElementMatrices e =
-        element_matrices(cell_coordinates(mesh, cell), d, model.material.density_kg_m3, thickness);
-    if (!(e.min_jacobian > 0.0)) inverted_cell = cell;
-    scatter(pattern, mesh, cell, e.stiffness, k);
-    scatter(pattern, mesh, cell, e.mass, m);
+    for (std::int64_t i = 0; i < count; ++i) {
+      const Index cell = cells[static_cast<std::size_t>(i)];
+      const ElementMatrices e = element_matrices(cell_coordinates(mesh, cell), d,
+                                                 model.material.density_kg_m3, thickness);
+      if (!(e.min_jacobian > 0.0)) inverted_cell = cell;
+      scatter(pattern, mesh, cell, e.stiffness, k);
+      scatter(pattern, mesh, cell, e.mass, m);
+    }
   }
   if (inverted_cell >= 0)
-    input_error("{}: cell {} is inverted or degenerate (Jacobian determinant ≤ 0); the mesh must "
-                "have positively oriented, non-degenerate cells",
-                context, inverted_cell.load());
+    input_error(
+        "{}: cell {} is inverted or degenerate (Jacobian determinant ≤ 0); the mesh must "
+        "have positively oriented, non-degenerate cells",
+        context, inverted_cell.load());
   return {mesh.dim, pattern.matrix(k), pattern.matrix(m)};
 }
 

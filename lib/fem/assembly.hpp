@@ -21,7 +21,8 @@ struct SystemMatrices {
 };
 
 /// Assembles K and M. The sparsity pattern comes from the node adjacency of the cells, and the
-/// cells are integrated in parallel (OpenMP) straight into it. Throws InputError naming
+/// cells are integrated in parallel (OpenMP, by colours of cells sharing no node) straight into
+/// it; the result is bitwise independent of the thread count. Throws InputError naming
 /// `context` for an invalid model, a cell with an out-of-range node index, or an inverted cell.
 SystemMatrices assemble(const mesh::StructureMesh& mesh, const ElasticModel& model,
                         std::string_view context);

@@ -32,8 +32,8 @@ DofMap DofMap::clamp_groups(const mesh::StructureMesh& mesh, std::span<const std
     if (found == mesh.node_groups.end()) {
       std::vector<std::string> available;
       for (const auto& [group, members] : mesh.node_groups) available.push_back(group);
-      input_error("{}: node group '{}' does not exist in the mesh; available groups: [{}]",
-                  context, name, fmt::join(available, ", "));
+      input_error("{}: node group '{}' does not exist in the mesh; available groups: [{}]", context,
+                  name, fmt::join(available, ", "));
     }
     nodes.insert(nodes.end(), found->second.begin(), found->second.end());
   }

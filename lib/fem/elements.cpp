@@ -120,9 +120,13 @@ void add_mass(const Eigen::MatrixXd& coords, double density, double thickness,
 
 }  // namespace
 
-ShapeValues tri6_shape(const Eigen::Vector3d& xi) { return quadratic_shape(xi, 2, kTri6Edges); }
+ShapeValues tri6_shape(const Eigen::Vector3d& xi) {
+  return quadratic_shape(xi, 2, kTri6Edges);
+}
 
-ShapeValues tet10_shape(const Eigen::Vector3d& xi) { return quadratic_shape(xi, 3, kTet10Edges); }
+ShapeValues tet10_shape(const Eigen::Vector3d& xi) {
+  return quadratic_shape(xi, 3, kTet10Edges);
+}
 
 ElementMatrices element_matrices(const Eigen::MatrixXd& coords, const Eigen::MatrixXd& elasticity,
                                  double density, double thickness) {

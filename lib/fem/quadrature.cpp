@@ -15,8 +15,8 @@ void add_triangle_orbit(QuadratureRule& rule, double a, double w) {
     rule.weights.push_back(w);
     return;
   }
-  for (const Eigen::Vector3d& p : {Eigen::Vector3d(a, a, 0), Eigen::Vector3d(b, a, 0),
-                                   Eigen::Vector3d(a, b, 0)}) {
+  for (const Eigen::Vector3d& p :
+       {Eigen::Vector3d(a, a, 0), Eigen::Vector3d(b, a, 0), Eigen::Vector3d(a, b, 0)}) {
     rule.points.push_back(p);
     rule.weights.push_back(w);
   }

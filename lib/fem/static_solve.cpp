@@ -13,9 +13,10 @@ Eigen::VectorXd solve_static(const SystemMatrices& system, const DofMap& dofs,
   const SparseMatrix k = dofs.reduce(system.stiffness);
   Eigen::SimplicialLDLT<SparseMatrix> solver(k);
   if (solver.info() != Eigen::Success || (solver.vectorD().array() <= 0.0).any())
-    numerical_error("static solve: the stiffness on the {} free DOFs is singular or indefinite; "
-                    "the clamped nodes must prevent every rigid-body motion",
-                    dofs.free_count());
+    numerical_error(
+        "static solve: the stiffness on the {} free DOFs is singular or indefinite; "
+        "the clamped nodes must prevent every rigid-body motion",
+        dofs.free_count());
   const Eigen::VectorXd u = solver.solve(dofs.reduce(Eigen::MatrixXd(force)));
   return dofs.expand(u);
 }

@@ -205,10 +205,37 @@ Index count_border_edges(const mesh::SurfaceMesh& surface) {
   return border;
 }
 
+/// Each segment (a, b) becomes (a, m), (m, b); original vertices keep their indices.
+mesh::SurfaceMesh split_segments_in_two(const mesh::SurfaceMesh& s) {
+  mesh::SurfaceMesh out;
+  out.dim = 2;
+  const Index n = s.vertices.rows(), cells = s.cells.rows();
+  out.vertices.resize(n + cells, 2);
+  out.vertices.topRows(n) = s.vertices;
+  out.cells.resize(2 * cells, 2);
+  for (Index c = 0; c < cells; ++c) {
+    const Index a = s.cells(c, 0), b = s.cells(c, 1), m = n + c;
+    out.vertices.row(m) = 0.5 * (s.vertices.row(a) + s.vertices.row(b));
+    out.cells.row(2 * c) << a, m;
+    out.cells.row(2 * c + 1) << m, b;
+  }
+  return out;
+}
+
+double longest_segment(const mesh::SurfaceMesh& s) {
+  double longest = 0.0;
+  for (Index c = 0; c < s.cells.rows(); ++c)
+    longest = std::max(longest, (s.vertices.row(s.cells(c, 0)) - s.vertices.row(s.cells(c, 1))).norm());
+  return longest;
+}
+
 mesh::SurfaceMesh refine_uniformly(const mesh::SurfaceMesh& surface, double max_edge) {
-  HM_ASSERT(surface.dim == 3 && max_edge > 0.0,
-            "refine_uniformly needs 3-D triangles and a positive size");
+  HM_ASSERT(max_edge > 0.0, "refine_uniformly needs a positive size");
   mesh::SurfaceMesh out = surface;
+  if (surface.dim == 2) {
+    while (out.cells.rows() > 0 && longest_segment(out) > max_edge) out = split_segments_in_two(out);
+    return out;
+  }
   while (out.cells.rows() > 0 && longest_edge(out) > max_edge) out = split_in_four(out);
   return out;
 }

@@ -35,8 +35,9 @@ SurfaceCheckReport check_closed_surface(mesh::SurfaceMesh& surface, std::string_
 /// Number of edges used by exactly one triangle (0 for a closed surface).
 mesh::Index count_border_edges(const mesh::SurfaceMesh& surface);
 
-/// Splits every triangle into four (edge midpoints shared between neighbours) until the longest
-/// edge is ≤ max_edge [m]; the geometry and the orientation are unchanged. 3-D triangles only.
+/// Splits every triangle into four (edge midpoints shared between neighbours), or every 2-D
+/// segment into two, until the longest edge is ≤ max_edge [m]; the geometry and the orientation
+/// are unchanged, and the original vertices keep their indices (new ones are appended).
 mesh::SurfaceMesh refine_uniformly(const mesh::SurfaceMesh& surface, double max_edge);
 
 /// Reverses every cell (the normal of each triangle or segment flips).

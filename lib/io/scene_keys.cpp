@@ -9,7 +9,7 @@ namespace {
 constexpr double inf = 1e300;
 const std::vector<std::string> mesh_stage{"fsi-mesh"};
 const std::vector<std::string> modes_stage{"fsi-modes"};
-const std::vector<std::string> structure_stages{"fsi-mesh", "fsi-modes"};
+const std::vector<std::string> map_stage{"fsi-map"};
 
 KeyDecl number(std::string path, std::string def, std::string unit, double min, double max,
                std::string doc, std::vector<std::string> stages, bool min_excl = false,
@@ -72,6 +72,7 @@ const std::vector<SectionDecl>& scene_sections() {
        "xmin, xmax, ymin, ymax (, zmin, zmax); .geo files bring their own physical groups."},
       {"structure.material", true, "Linear isotropic elastic material."},
       {"modes", false, "Mode extraction (fsi-modes)."},
+      {"map", false, "Mapping of the mode shapes onto the surface the fluid sees (fsi-map)."},
   };
   return sections;
 }
@@ -149,6 +150,30 @@ const std::vector<KeyDecl>& scene_keys() {
            modes_stage),
       number("modes.tolerance", "1e-12", "1", 0, 1e-3,
              "relative convergence tolerance of the Lanczos iteration", modes_stage, true),
+
+      // [map]
+      text("map.target", "\"surface\"", {"surface", "file"},
+           "surface: the structure's own boundary surface (optionally refined to map.max_edge); "
+           "file: the surface mesh in map.file",
+           map_stage),
+      text("map.file", "\"\"", {},
+           "target surface mesh for map.target = \"file\" (.stl, .obj, .ply; metres), relative to "
+           "the scene",
+           map_stage),
+      number("map.max_edge", "0.0", "m", 0, inf,
+             "when > 0, the target surface is refined until no edge is longer (the fluid's "
+             "resolution)",
+             map_stage),
+      number("map.support_factor", "6.0", "1", 1, 100,
+             "RBF support radius in mean source node spacings (4: ~2e-3 relative interpolation "
+             "error on smooth fields, 6: ~3e-4, 8: ~6e-5; measured in tests/rbf)",
+             map_stage),
+      number("map.support_radius", "0.0", "m", 0, inf,
+             "when > 0, a fixed RBF support radius instead of map.support_factor", map_stage),
+      number("map.far_factor", "2.0", "1", 0, inf,
+             "target vertices farther than this many source spacings from the structure's "
+             "surface nodes are an error",
+             map_stage, true),
   };
   return keys;
 }

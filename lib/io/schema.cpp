@@ -173,8 +173,35 @@ const SchemaSpec& modes_schema() {
   return spec;
 }
 
+const SchemaSpec& mapped_modes_schema() {
+  static const SchemaSpec spec{
+      schema::mapped_modes,
+      1,
+      "Mode shapes interpolated from the structure's boundary surface onto the surface the fluid "
+      "sees (RBF: Wendland C2 + linear polynomial; consistent for shapes, its transpose conservative "
+      "for forces), with the modal data fsi-simulate needs. Written by fsi-map.",
+      {
+          {ds::target_vertices, DType::f64, {"n_target", "dim"}, "m", "target surface vertices"},
+          {ds::target_cells, DType::i64, {"n_target_cells", "dim"}, "",
+           "target surface segments (2-D) or triangles (3-D)"},
+          {ds::mapped_shapes, DType::f64, {"n_modes", "n_target", "dim"}, "1/sqrt(kg)",
+           "mass-normalised mode shapes at the target vertices"},
+          {ds::frequencies_hz, DType::f64, {"n_modes"}, "Hz", "natural frequencies"},
+          {ds::omega, DType::f64, {"n_modes"}, "rad/s", "angular natural frequencies"},
+          {ds::damping_ratio, DType::f64, {"n_modes"}, "1", "modal damping ratio zeta"},
+          {ds::participation_translation, DType::f64, {"n_modes", "dim"}, "sqrt(kg)",
+           "Phi^T M T (base excitation of a moving tank)"},
+          {ds::participation_rotation, DType::f64, {"n_modes", "n_rotations"}, "sqrt(kg)*m",
+           "Phi^T M R about the reference point of fsi-modes"},
+          {ds::mapping_field_error, DType::f64, {"n_modes"}, "1",
+           "leave-some-out estimate of the interpolation error of each mode: max |error| / max "
+           "|mode|"},
+      }};
+  return spec;
+}
+
 std::vector<const SchemaSpec*> all_schemas() {
-  return {&mesh_schema(), &modes_schema()};
+  return {&mesh_schema(), &modes_schema(), &mapped_modes_schema()};
 }
 
 const SchemaSpec* find_schema(std::string_view name) {

@@ -88,10 +88,16 @@ inline constexpr const char* modes_cells_vtk = "/mesh/cells_vtk";
 inline constexpr const char* modes_surface_vertices = "/mesh/surface/vertices";
 inline constexpr const char* modes_surface_cells = "/mesh/surface/cells";
 inline constexpr const char* modes_surface_node = "/mesh/surface/volume_node";
+// hydromodal.mapped_modes
+inline constexpr const char* target_vertices = "/target/vertices";
+inline constexpr const char* target_cells = "/target/cells";
+inline constexpr const char* mapped_shapes = "/modes/shapes";  // on the target vertices
+inline constexpr const char* mapping_field_error = "/quality/field_error";
 }  // namespace ds
 
 const SchemaSpec& mesh_schema();
 const SchemaSpec& modes_schema();
+const SchemaSpec& mapped_modes_schema();
 /// Every schema hydromodal writes (for fsi-inspect and the generated reference).
 std::vector<const SchemaSpec*> all_schemas();
 const SchemaSpec* find_schema(std::string_view name);

@@ -81,7 +81,8 @@ void add_side_node_groups(const Lattice& lattice, StructureMesh& mesh) {
                          n / (lattice.points[0] * lattice.points[1])};
     for (int axis = 0; axis < lattice.dim; ++axis) {
       if (p[axis] == 0) mesh.node_groups[kSideNames[2 * axis]].push_back(n);
-      if (p[axis] == lattice.points[axis] - 1) mesh.node_groups[kSideNames[2 * axis + 1]].push_back(n);
+      if (p[axis] == lattice.points[axis] - 1)
+        mesh.node_groups[kSideNames[2 * axis + 1]].push_back(n);
     }
   }
 }
@@ -114,9 +115,10 @@ std::vector<std::vector<LatticePoint>> side_facets(const Lattice& lattice, int a
       base[t1] = 2 * v;
       const LatticePoint p00 = base, p10 = offset(base, t0, 2), p01 = offset(base, t1, 2);
       const LatticePoint p11 = offset(p10, t1, 2);
-      for (std::vector<LatticePoint> tri : {std::vector{p00, p10, p11}, std::vector{p00, p11, p01}}) {
-        const Eigen::Vector3d n = (as_vector(tri[1]) - as_vector(tri[0]))
-                                      .cross(as_vector(tri[2]) - as_vector(tri[0]));
+      for (std::vector<LatticePoint> tri :
+           {std::vector{p00, p10, p11}, std::vector{p00, p11, p01}}) {
+        const Eigen::Vector3d n =
+            (as_vector(tri[1]) - as_vector(tri[0])).cross(as_vector(tri[2]) - as_vector(tri[0]));
         if (n.dot(outward) < 0) std::swap(tri[1], tri[2]);
         facets.push_back(tri);
       }
@@ -132,13 +134,14 @@ void add_boundary_facets(const Lattice& lattice, StructureMesh& mesh) {
         mesh.facet_groups[kSideNames[2 * axis + (high ? 1 : 0)]].push_back(
             static_cast<Index>(rows.size()));
         if (lattice.dim == 2)
-          rows.push_back(quadratic_nodes(lattice, corners,
-                                         std::array<std::pair<int, int>, 1>{{{0, 1}}}));
+          rows.push_back(
+              quadratic_nodes(lattice, corners, std::array<std::pair<int, int>, 1>{{{0, 1}}}));
         else
           rows.push_back(quadratic_nodes(lattice, corners, kTri6Edges));
       }
   mesh.facets.resize(static_cast<Index>(rows.size()), mesh.nodes_per_facet());
-  for (std::size_t r = 0; r < rows.size(); ++r) append_row(mesh.facets, static_cast<Index>(r), rows[r]);
+  for (std::size_t r = 0; r < rows.size(); ++r)
+    append_row(mesh.facets, static_cast<Index>(r), rows[r]);
 }
 
 /// The two triangles of a rectangle cell, counter-clockwise.
@@ -157,9 +160,8 @@ std::vector<std::vector<LatticePoint>> box_cell_tetrahedra(const LatticePoint& b
     std::vector<LatticePoint> tet{base};
     for (int axis : order) tet.push_back(offset(tet.back(), axis, 2));
     const Eigen::Vector3d x0 = as_vector(tet[0]);
-    const double volume6 = (as_vector(tet[1]) - x0)
-                               .cross(as_vector(tet[2]) - x0)
-                               .dot(as_vector(tet[3]) - x0);
+    const double volume6 =
+        (as_vector(tet[1]) - x0).cross(as_vector(tet[2]) - x0).dot(as_vector(tet[3]) - x0);
     if (volume6 < 0) std::swap(tet[1], tet[2]);
     tets.push_back(tet);
   } while (std::next_permutation(order.begin(), order.end()));

@@ -31,8 +31,12 @@ struct ArpackState {
   int info = 1;  // 1: use the starting vector in resid
 
   ArpackState(int n_, int nev_, int ncv_, const Eigen::VectorXd& start)
-      : n(n_), nev(nev_), ncv(ncv_), resid(start.data(), start.data() + n_),
-        v(static_cast<std::size_t>(n_) * ncv_), workd(3 * static_cast<std::size_t>(n_)),
+      : n(n_),
+        nev(nev_),
+        ncv(ncv_),
+        resid(start.data(), start.data() + n_),
+        v(static_cast<std::size_t>(n_) * ncv_),
+        workd(3 * static_cast<std::size_t>(n_)),
         workl(static_cast<std::size_t>(ncv_) * (ncv_ + 8)) {}
 
   int lworkl() const { return static_cast<int>(workl.size()); }
@@ -100,7 +104,8 @@ EigenPairs arpack_shift_invert(const ShiftInvertOperator& op, int nev,
   const int n = static_cast<int>(op.size());
   HM_ASSERT(nev >= 1 && nev < n, "ARPACK needs 1 ≤ nev < n; nev = {}, n = {}", nev, n);
   const auto start = std::chrono::steady_clock::now();
-  ArpackState s(n, nev, subspace_size(options, nev, n), lanczos_start_vector(n, options.start_seed));
+  ArpackState s(n, nev, subspace_size(options, nev, n),
+                lanczos_start_vector(n, options.start_seed));
   EigenPairs out;
   out.requested = nev;
   out.op_applications = iterate(op, s, options.tolerance, options.max_restarts);

@@ -12,10 +12,14 @@ namespace hm::modal {
 
 std::string to_string(EigenStatus s) {
   switch (s) {
-    case EigenStatus::converged: return "converged";
-    case EigenStatus::not_converged: return "not_converged";
-    case EigenStatus::factorisation_failed: return "factorisation_failed";
-    case EigenStatus::solver_error: return "solver_error";
+    case EigenStatus::converged:
+      return "converged";
+    case EigenStatus::not_converged:
+      return "not_converged";
+    case EigenStatus::factorisation_failed:
+      return "factorisation_failed";
+    case EigenStatus::solver_error:
+      return "solver_error";
   }
   return "unknown";
 }
@@ -35,8 +39,8 @@ Eigen::VectorXd lanczos_start_vector(Eigen::Index n, unsigned seed) {
 
 EigenPairs dense_generalized(const SparseMatrix& stiffness, const SparseMatrix& mass, int nev,
                              double shift) {
-  const Eigen::Index n = stiffness.rows();
-  HM_ASSERT(nev >= 1 && nev <= n, "dense solver needs 1 ≤ nev ≤ n; nev = {}, n = {}", nev, n);
+  HM_ASSERT(nev >= 1 && nev <= stiffness.rows(), "dense solver needs 1 ≤ nev ≤ n; nev = {}, n = {}",
+            nev, stiffness.rows());
   const auto start = std::chrono::steady_clock::now();
   const Eigen::MatrixXd k(stiffness), m(mass);
   const Eigen::MatrixXd shifted = k - shift * m;

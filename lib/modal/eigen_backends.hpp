@@ -21,10 +21,10 @@ enum class EigenStatus {
 std::string to_string(EigenStatus s);
 
 struct LanczosOptions {
-  int subspace = 0;           ///< Lanczos basis size ncv; 0: max(2·nev + 1, 20), at most n
-  int max_restarts = 1000;    ///< implicit restarts (ARPACK iparam[2], Spectra maxit)
-  double tolerance = 1e-12;   ///< relative accuracy of the Ritz values of OP
-  unsigned start_seed = 42;   ///< the starting vector is pseudo-random from this seed
+  int subspace = 0;          ///< Lanczos basis size ncv; 0: max(2·nev + 1, 20), at most n
+  int max_restarts = 1000;   ///< implicit restarts (ARPACK iparam[2], Spectra maxit)
+  double tolerance = 1e-12;  ///< relative accuracy of the Ritz values of OP
+  unsigned start_seed = 42;  ///< the starting vector is pseudo-random from this seed
 };
 
 /// Converged eigenpairs, λ ascending [rad²/s²]; vectors as the backend returns them (columns
@@ -35,9 +35,9 @@ struct EigenPairs {
   Eigen::MatrixXd vectors;
   int requested = 0;
   int converged = 0;
-  int iterations = 0;        ///< restarts (Lanczos) or 1 (dense)
-  int op_applications = 0;   ///< applications of (K − σM)⁻¹
-  double seconds = 0.0;      ///< wall time of the iteration (excludes the factorisation)
+  int iterations = 0;       ///< restarts (Lanczos) or 1 (dense)
+  int op_applications = 0;  ///< applications of (K − σM)⁻¹
+  double seconds = 0.0;     ///< wall time of the iteration (excludes the factorisation)
   std::string message;
 };
 

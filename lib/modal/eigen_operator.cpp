@@ -21,9 +21,12 @@ struct SparseShiftInvert::Factor {
 
 std::string to_string(Factorisation f) {
   switch (f) {
-    case Factorisation::automatic: return "automatic";
-    case Factorisation::simplicial_ldlt: return "simplicial_ldlt";
-    case Factorisation::cholmod_supernodal_llt: return "cholmod_supernodal_llt";
+    case Factorisation::automatic:
+      return "automatic";
+    case Factorisation::simplicial_ldlt:
+      return "simplicial_ldlt";
+    case Factorisation::cholmod_supernodal_llt:
+      return "cholmod_supernodal_llt";
   }
   return "unknown";
 }
@@ -48,8 +51,8 @@ SparseShiftInvert::SparseShiftInvert(const SparseMatrix& stiffness, const Sparse
   if (!factor_->llt) {
     factor_->ldlt.emplace(shifted);
     // An exactly zero pivot means σ is an eigenvalue (or K − σM is singular).
-    ok_ = factor_->ldlt->info() == Eigen::Success &&
-          (factor_->ldlt->vectorD().array() != 0.0).all();
+    ok_ =
+        factor_->ldlt->info() == Eigen::Success && (factor_->ldlt->vectorD().array() != 0.0).all();
     used_ = Factorisation::simplicial_ldlt;
   }
   seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -18,9 +18,10 @@ void validate(const ModeRequest& request, Eigen::Index free_dofs) {
   if (by_count && request.count < 0)
     input_error("{}: number of modes = {}; it must be ≥ 1", request.context, request.count);
   if (by_count && request.count > free_dofs)
-    input_error("{}: {} modes requested, but the structure has only {} free DOFs; request at "
-                "most {} modes",
-                request.context, request.count, free_dofs, free_dofs);
+    input_error(
+        "{}: {} modes requested, but the structure has only {} free DOFs; request at "
+        "most {} modes",
+        request.context, request.count, free_dofs, free_dofs);
   if (by_frequency && !(*request.max_frequency_hz > 0.0))
     input_error("{}: maximum frequency = {} Hz; it must be > 0", request.context,
                 *request.max_frequency_hz);
@@ -64,9 +65,12 @@ void truncate(EigenPairs& pairs, double lambda_max) {
 
 std::string to_string(EigenBackend b) {
   switch (b) {
-    case EigenBackend::arpack: return "arpack";
-    case EigenBackend::spectra: return "spectra";
-    case EigenBackend::dense: return "dense";
+    case EigenBackend::arpack:
+      return "arpack";
+    case EigenBackend::spectra:
+      return "spectra";
+    case EigenBackend::dense:
+      return "dense";
   }
   return "unknown";
 }
@@ -95,8 +99,8 @@ EigenSolution solve_eigenproblem(const SparseMatrix& stiffness, const SparseMatr
     return solution;
   }
   if (!request.max_frequency_hz) {
-    solution.pairs = run_backend(options.backend, stiffness, mass, op, request.count,
-                                 options.lanczos);
+    solution.pairs =
+        run_backend(options.backend, stiffness, mass, op, request.count, options.lanczos);
     solution.solves = 1;
     return solution;
   }

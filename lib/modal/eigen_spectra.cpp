@@ -17,7 +17,7 @@ class SpectraShiftedInverse {
   explicit SpectraShiftedInverse(const ShiftInvertOperator& op) : op_(op) {}
   Eigen::Index rows() const { return op_.size(); }
   Eigen::Index cols() const { return op_.size(); }
-  void set_shift(double sigma) {
+  void set_shift([[maybe_unused]] double sigma) {
     HM_ASSERT(sigma == op_.shift(), "Spectra shift {} differs from the operator's {}", sigma,
               op_.shift());
   }
@@ -62,9 +62,9 @@ EigenPairs spectra_shift_invert(const ShiftInvertOperator& op, int nev,
   out.requested = nev;
   bool failed = false;
   try {
-    out.converged = static_cast<int>(solver.compute(Spectra::SortRule::LargestMagn,
-                                                    options.max_restarts, options.tolerance,
-                                                    Spectra::SortRule::SmallestAlge));
+    out.converged =
+        static_cast<int>(solver.compute(Spectra::SortRule::LargestMagn, options.max_restarts,
+                                        options.tolerance, Spectra::SortRule::SmallestAlge));
   } catch (const std::exception& e) {  // Spectra throws on internal breakdowns
     failed = true;
     out.status = EigenStatus::solver_error;

@@ -15,7 +15,8 @@ constexpr double kSignTie = 1e-8;
 double infinity_norm(const fem::SparseMatrix& a) {
   Eigen::VectorXd row_sums = Eigen::VectorXd::Zero(a.rows());
   for (Eigen::Index c = 0; c < a.outerSize(); ++c)
-    for (fem::SparseMatrix::InnerIterator it(a, c); it; ++it) row_sums(it.row()) += std::abs(it.value());
+    for (fem::SparseMatrix::InnerIterator it(a, c); it; ++it)
+      row_sums(it.row()) += std::abs(it.value());
   return row_sums.maxCoeff();
 }
 
@@ -65,7 +66,8 @@ void apply_damping(const Damping& damping, ModeSet& modes) {
   const Eigen::Index n = modes.count();
   modes.damping_ratio = Eigen::VectorXd::Zero(n);
   switch (damping.kind) {
-    case Damping::Kind::none: break;
+    case Damping::Kind::none:
+      break;
     case Damping::Kind::uniform:
       if (!(damping.ratio >= 0.0))
         input_error("{}: damping ratio ζ = {}; it must be ≥ 0", damping.context, damping.ratio);
@@ -73,8 +75,8 @@ void apply_damping(const Damping& damping, ModeSet& modes) {
       break;
     case Damping::Kind::per_mode:
       if (static_cast<Eigen::Index>(damping.ratios.size()) != n)
-        input_error("{}: {} damping ratios given for {} modes; give one per mode",
-                    damping.context, damping.ratios.size(), n);
+        input_error("{}: {} damping ratios given for {} modes; give one per mode", damping.context,
+                    damping.ratios.size(), n);
       for (Eigen::Index i = 0; i < n; ++i) {
         const double z = damping.ratios[static_cast<std::size_t>(i)];
         if (!(z >= 0.0))
@@ -103,10 +105,17 @@ void apply_damping(const Damping& damping, ModeSet& modes) {
 }
 
 SolverInfo solver_info(const EigenSolution& s) {
-  return {to_string(s.backend),      to_string(s.factorisation), to_string(s.pairs.status),
-          s.pairs.message,           s.pairs.requested,          s.pairs.converged,
-          s.shift,                   s.pairs.iterations,         s.pairs.op_applications,
-          s.factorisation_seconds,   s.pairs.seconds};
+  return {to_string(s.backend),
+          to_string(s.factorisation),
+          to_string(s.pairs.status),
+          s.pairs.message,
+          s.pairs.requested,
+          s.pairs.converged,
+          s.shift,
+          s.pairs.iterations,
+          s.pairs.op_applications,
+          s.factorisation_seconds,
+          s.pairs.seconds};
 }
 
 }  // namespace
@@ -142,8 +151,8 @@ ModeSet compute_modes(const mesh::StructureMesh& mesh, const fem::ElasticModel& 
                       const Damping& damping, std::string_view context) {
   const fem::SystemMatrices system = fem::assemble(mesh, model, context);
   const fem::DofMap dofs = fem::DofMap::clamp_groups(mesh, clamped_groups, context);
-  const EigenSolution solution = solve_eigenproblem(dofs.reduce(system.stiffness),
-                                                    dofs.reduce(system.mass), request, options);
+  const EigenSolution solution =
+      solve_eigenproblem(dofs.reduce(system.stiffness), dofs.reduce(system.mass), request, options);
   return build_mode_set(solution, system, dofs, mesh, reference_point, damping);
 }
 

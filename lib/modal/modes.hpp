@@ -57,18 +57,18 @@ struct SolverInfo {
 
 struct ModeSet {
   int dim = 3;
-  Eigen::VectorXd eigenvalues;      ///< λ [rad²/s²]
-  Eigen::VectorXd omega;            ///< ω [rad/s]
-  Eigen::VectorXd frequency_hz;     ///< f [Hz]
-  Eigen::MatrixXd shapes;           ///< n_dofs × n_modes, mass-normalised
-  Eigen::VectorXd residuals;        ///< relative residual per mode (see header comment)
-  double orthogonality_error = 0;   ///< max |ΦᵀMΦ − I|
+  Eigen::VectorXd eigenvalues;     ///< λ [rad²/s²]
+  Eigen::VectorXd omega;           ///< ω [rad/s]
+  Eigen::VectorXd frequency_hz;    ///< f [Hz]
+  Eigen::MatrixXd shapes;          ///< n_dofs × n_modes, mass-normalised
+  Eigen::VectorXd residuals;       ///< relative residual per mode (see header comment)
+  double orthogonality_error = 0;  ///< max |ΦᵀMΦ − I|
   Eigen::Vector3d reference_point = Eigen::Vector3d::Zero();  ///< [m]
-  Eigen::MatrixXd translational_participation;  ///< n_modes × dim [kg^½]
-  Eigen::MatrixXd rotational_participation;     ///< n_modes × (3 | 1) [kg^½·m]
-  Eigen::MatrixXd translational_effective_mass; ///< n_modes × dim [kg]
-  Eigen::MatrixXd rotational_effective_mass;    ///< n_modes × (3 | 1) [kg·m²]
-  Eigen::VectorXd damping_ratio;                ///< ζ per mode [-]
+  Eigen::MatrixXd translational_participation;                ///< n_modes × dim [kg^½]
+  Eigen::MatrixXd rotational_participation;                   ///< n_modes × (3 | 1) [kg^½·m]
+  Eigen::MatrixXd translational_effective_mass;               ///< n_modes × dim [kg]
+  Eigen::MatrixXd rotational_effective_mass;                  ///< n_modes × (3 | 1) [kg·m²]
+  Eigen::VectorXd damping_ratio;                              ///< ζ per mode [-]
   /// Modal damping coefficient c_i = 2ζ_iω_i [1/s]; finite for rigid-body modes under Rayleigh
   /// damping (c = α + βλ), where ζ itself is undefined (reported as 0 if c = 0, else +∞).
   Eigen::VectorXd damping_coefficient;

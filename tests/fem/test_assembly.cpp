@@ -2,7 +2,10 @@
 // static tip deflection of a cantilever against Timoshenko beam theory.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+
+#include <omp.h>
 
 #include "core/errors.hpp"
 #include "fem/assembly.hpp"
@@ -37,6 +40,18 @@ TEST(Assembly, SymmetricWithTotalMassAndRigidNullSpace) {
     const double k_scale = s.stiffness.norm() * rigid.norm();
     EXPECT_LT((s.stiffness * rigid).norm(), 1e-13 * k_scale) << m.dim << "-D";
   }
+}
+
+TEST(Assembly, BitwiseIndependentOfThreadCount) {
+  const mesh::StructureMesh m = mesh::structured_box(1.0, 0.3, 0.2, 4, 2, 2);
+  const int threads = omp_get_max_threads();
+  omp_set_num_threads(1);
+  const SystemMatrices serial = assemble(m, kSteel, "test");
+  omp_set_num_threads(std::max(threads, 2));
+  const SystemMatrices parallel = assemble(m, kSteel, "test");
+  omp_set_num_threads(threads);
+  EXPECT_EQ(SparseMatrix(serial.stiffness - parallel.stiffness).cwiseAbs().sum(), 0.0);
+  EXPECT_EQ(SparseMatrix(serial.mass - parallel.mass).cwiseAbs().sum(), 0.0);
 }
 
 TEST(Assembly, UniaxialStressPatchTest) {

@@ -46,8 +46,8 @@ TEST(DofMap, UnknownGroupListsTheAvailableOnes) {
     FAIL() << "expected InputError";
   } catch (const InputError& e) {
     const std::string text = e.what();
-    for (const char* part : {"scene.toml: bodies.beam.clamped", "'clamp'",
-                             "xmax, xmin, ymax, ymin, zmax, zmin"})
+    for (const char* part :
+         {"scene.toml: bodies.beam.clamped", "'clamp'", "xmax, xmin, ymax, ymin, zmax, zmin"})
       EXPECT_NE(text.find(part), std::string::npos) << text << " lacks " << part;
   }
 }

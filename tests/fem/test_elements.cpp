@@ -19,8 +19,8 @@ Eigen::MatrixXd reference_nodes(int dim) {
   }
   Eigen::MatrixXd x(10, 3);
   x << 0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 1,  // corners
-      0.5, 0, 0, 0.5, 0.5, 0, 0, 0.5, 0,     // e01 e12 e20
-      0, 0, 0.5, 0, 0.5, 0.5, 0.5, 0, 0.5;   // e03 e23 e13
+      0.5, 0, 0, 0.5, 0.5, 0, 0, 0.5, 0,    // e01 e12 e20
+      0, 0, 0.5, 0, 0.5, 0.5, 0.5, 0, 0.5;  // e03 e23 e13
   return x;
 }
 
@@ -46,7 +46,9 @@ double measure(const Eigen::MatrixXd& nodes) {  // area (2-D) or volume (3-D)
   return edges.determinant() / (dim == 2 ? 2.0 : 6.0);
 }
 
-ElasticModel rubber() { return {{12e6, 0.4, 1100.0}, PlaneAssumption::plane_strain, 0.7}; }
+ElasticModel rubber() {
+  return {{12e6, 0.4, 1100.0}, PlaneAssumption::plane_strain, 0.7};
+}
 
 class ElementTest : public ::testing::TestWithParam<int> {};
 

@@ -8,7 +8,9 @@
 namespace hm::fem {
 namespace {
 
-double factorial(int n) { return std::tgamma(n + 1.0); }
+double factorial(int n) {
+  return std::tgamma(n + 1.0);
+}
 
 double integrate(const QuadratureRule& rule, int a, int b, int c) {
   double sum = 0.0;
@@ -40,7 +42,8 @@ TEST(Quadrature, TetrahedronRulesExactToTheirDegree) {
     for (int a = 0; a <= checked; ++a)
       for (int b = 0; a + b <= checked; ++b)
         for (int c = 0; a + b + c <= checked; ++c) {
-          const double exact = factorial(a) * factorial(b) * factorial(c) / factorial(a + b + c + 3);
+          const double exact =
+              factorial(a) * factorial(b) * factorial(c) / factorial(a + b + c + 3);
           EXPECT_NEAR(integrate(rule, a, b, c), exact, 1e-15)
               << "x^" << a << " y^" << b << " z^" << c;
         }

@@ -47,9 +47,10 @@ TEST(StructuredRectangle, BoundaryGroupsAndOutwardFacets) {
   EXPECT_EQ(m.facets.rows(), 2 * (4 + 3));
   EXPECT_EQ(m.node_groups.at("xmin").size(), 7u);
   EXPECT_EQ(m.node_groups.at("ymax").size(), 9u);
-  const std::map<std::string, Eigen::Vector3d> outward{
-      {"xmin", -Eigen::Vector3d::UnitX()}, {"xmax", Eigen::Vector3d::UnitX()},
-      {"ymin", -Eigen::Vector3d::UnitY()}, {"ymax", Eigen::Vector3d::UnitY()}};
+  const std::map<std::string, Eigen::Vector3d> outward{{"xmin", -Eigen::Vector3d::UnitX()},
+                                                       {"xmax", Eigen::Vector3d::UnitX()},
+                                                       {"ymin", -Eigen::Vector3d::UnitY()},
+                                                       {"ymax", Eigen::Vector3d::UnitY()}};
   for (const auto& [side, normal] : outward) {
     double length = 0.0;
     for (Index f : m.facet_groups.at(side)) {
@@ -59,8 +60,8 @@ TEST(StructuredRectangle, BoundaryGroupsAndOutwardFacets) {
       EXPECT_LT((point(m, m.facets(f, 2)) - 0.5 * (a + b)).norm(), 1e-14);
       length += t.norm();
       for (int k = 0; k < 3; ++k)
-        EXPECT_TRUE(std::binary_search(m.node_groups.at(side).begin(),
-                                       m.node_groups.at(side).end(), m.facets(f, k)));
+        EXPECT_TRUE(std::binary_search(m.node_groups.at(side).begin(), m.node_groups.at(side).end(),
+                                       m.facets(f, k)));
     }
     EXPECT_NEAR(length, side[0] == 'x' ? 1.0 : 2.0, 1e-14) << side;
   }

@@ -49,13 +49,14 @@ TEST(EigenBackends, ArpackSpectraAndDenseAgree) {
     EXPECT_EQ(sets.back().count(), 10);
   }
   const Eigen::VectorXd& dense = sets[2].eigenvalues;
-  const double arpack_error = ((sets[0].eigenvalues - dense).array() / dense.array()).abs().maxCoeff();
+  const double arpack_error =
+      ((sets[0].eigenvalues - dense).array() / dense.array()).abs().maxCoeff();
   const double spectra_error =
       ((sets[1].eigenvalues - dense).array() / dense.array()).abs().maxCoeff();
-  std::printf("max relative eigenvalue difference to dense: ARPACK %.2e, Spectra %.2e "
-              "(ARPACK %d OP applications, Spectra %d)\n",
-              arpack_error, spectra_error, sets[0].solver.op_applications,
-              sets[1].solver.op_applications);
+  std::printf(
+      "max relative eigenvalue difference to dense: ARPACK %.2e, Spectra %.2e "
+      "(ARPACK %d OP applications, Spectra %d)\n",
+      arpack_error, spectra_error, sets[0].solver.op_applications, sets[1].solver.op_applications);
   EXPECT_LT(arpack_error, 1e-8);
   EXPECT_LT(spectra_error, 1e-8);
   // Same modes, up to the documented sign convention (the spectrum here is simple).
@@ -104,8 +105,7 @@ TEST(EigenBackends, FrequencyRequestGrowsUntilPastTheLimit) {
     EigenOptions options;
     options.backend = backend;
     options.first_block = 4;  // 4 → 8 → 16 → 32 pairs
-    const EigenSolution s =
-        solve_eigenproblem(gate().k, gate().m, {0, f_max, "test"}, options);
+    const EigenSolution s = solve_eigenproblem(gate().k, gate().m, {0, f_max, "test"}, options);
     ASSERT_EQ(s.pairs.status, EigenStatus::converged) << s.pairs.message;
     EXPECT_EQ(s.solves, 4);
     ASSERT_EQ(s.pairs.converged, 17);
@@ -123,8 +123,8 @@ TEST(EigenBackends, NonConvergenceIsAStatusWithTheConvergedCount) {
   starved.subspace = 12;
   const SparseShiftInvert op(gate().k, gate().m, default_shift(gate().k, gate().m));
   for (bool arpack : {true, false}) {
-    const EigenPairs p = arpack ? arpack_shift_invert(op, 10, starved)
-                                : spectra_shift_invert(op, 10, starved);
+    const EigenPairs p =
+        arpack ? arpack_shift_invert(op, 10, starved) : spectra_shift_invert(op, 10, starved);
     SCOPED_TRACE(arpack ? "arpack" : "spectra");
     EXPECT_EQ(p.status, EigenStatus::not_converged);
     EXPECT_LT(p.converged, 10);

@@ -32,8 +32,9 @@ void expect_rigid_modes(const ModeSet& modes, int rigid, const Eigen::VectorXd& 
   for (Eigen::Index k = 0; k < inertia.size(); ++k)
     EXPECT_NEAR(rotational(k), inertia(k), 1e-9 * inertia(k));
   // Elastic modes carry no rigid-body participation.
-  EXPECT_LT(modes.translational_participation.bottomRows(modes.count() - rigid).cwiseAbs().maxCoeff(),
-            1e-6 * std::sqrt(mass));
+  EXPECT_LT(
+      modes.translational_participation.bottomRows(modes.count() - rigid).cwiseAbs().maxCoeff(),
+      1e-6 * std::sqrt(mass));
 }
 
 TEST(FreeFree, BlockHasSixRigidBodyModes) {

@@ -9,9 +9,9 @@
 
 #include <cmath>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <string>
-#include <memory>
 
 #include "fem/assembly.hpp"
 #include "fem/dof_map.hpp"
@@ -57,15 +57,16 @@ const modal::SparseShiftInvert& shift_invert(const Model& mdl, modal::Factorisat
       cache;
   auto& op = cache[{&mdl, f}];
   if (!op)
-    op = std::make_unique<modal::SparseShiftInvert>(mdl.k, mdl.m, modal::default_shift(mdl.k, mdl.m), f);
+    op = std::make_unique<modal::SparseShiftInvert>(mdl.k, mdl.m,
+                                                    modal::default_shift(mdl.k, mdl.m), f);
   return *op;
 }
 
 void BM_Assemble(benchmark::State& state) {
-  const auto mesh = mesh::structured_box(0.05 * state.range(0), 0.05 * state.range(1),
-                                         0.05 * state.range(2), static_cast<int>(state.range(0)),
-                                         static_cast<int>(state.range(1)),
-                                         static_cast<int>(state.range(2)));
+  const auto mesh =
+      mesh::structured_box(0.05 * state.range(0), 0.05 * state.range(1), 0.05 * state.range(2),
+                           static_cast<int>(state.range(0)), static_cast<int>(state.range(1)),
+                           static_cast<int>(state.range(2)));
   for (auto _ : state) {
     fem::SystemMatrices s = fem::assemble(mesh, kSteel, "bench");
     benchmark::DoNotOptimize(s.stiffness.nonZeros());

@@ -1,0 +1,194 @@
+#include "driver/map_stage.hpp"
+
+#include <fmt/format.h>
+
+#include "core/errors.hpp"
+#include "core/log.hpp"
+#include "geometry/surface_checks.hpp"
+#include "geometry/surface_io.hpp"
+#include "io/artefact.hpp"
+#include "io/xdmf.hpp"
+#include "rbf/interpolator.hpp"
+
+namespace hm::driver {
+namespace {
+
+namespace ds = io::ds;
+
+/// What fsi-map takes from a mode artefact.
+struct SourceModes {
+  mesh::SurfaceMesh surface;
+  Eigen::MatrixXd shapes;  ///< n_surface_vertices·dim × n_modes (DOF = dim·vertex + c)
+  Eigen::VectorXd frequencies_hz, omega, damping_ratio;
+  io::MatrixRM participation_translation, participation_rotation;
+};
+
+Eigen::VectorXd vector_of(const io::ArtefactReader& r, const std::string& dataset) {
+  const std::vector<double> values = r.read_values(dataset);
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+SourceModes read_source_modes(const io::ArtefactReader& r) {
+  SourceModes s;
+  s.surface.vertices = r.read_matrix(ds::modes_surface_vertices);
+  s.surface.dim = static_cast<int>(s.surface.vertices.cols());
+  s.surface.cells = r.read_indices(ds::modes_surface_cells);
+  const auto n_modes = static_cast<Eigen::Index>(r.extent("n_modes"));
+  const std::vector<double> stacked = r.read_values(ds::surface_shapes);  // [mode][vertex][c]
+  s.shapes = Eigen::Map<const Eigen::MatrixXd>(stacked.data(),
+                                               static_cast<Eigen::Index>(stacked.size()) / std::max<Eigen::Index>(n_modes, 1),
+                                               n_modes);
+  s.frequencies_hz = vector_of(r, ds::frequencies_hz);
+  s.omega = vector_of(r, ds::omega);
+  s.damping_ratio = vector_of(r, ds::damping_ratio);
+  s.participation_translation = r.read_matrix(ds::participation_translation);
+  s.participation_rotation = r.read_matrix(ds::participation_rotation);
+  return s;
+}
+
+mesh::SurfaceMesh target_surface(const io::Scene& scene, const SourceModes& source) {
+  mesh::SurfaceMesh target = source.surface;
+  if (scene.string("map.target") == "file") {
+    target = geometry::read_surface_file(scene.file_path("map.file"));
+    if (target.dim != source.surface.dim)
+      input_error("{}: the target surface is {}-D but the structure is {}-D", scene.where("map.file"),
+                  target.dim, source.surface.dim);
+  }
+  if (const double max_edge = scene.number("map.max_edge"); max_edge > 0)
+    target = geometry::refine_uniformly(target, max_edge);
+  return target;
+}
+
+/// Per-vertex blocks: n_vertices × dim matrix of one field from the DOF-stacked column.
+Eigen::MatrixXd vertex_rows(const Eigen::VectorXd& column, int dim) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(
+      column.data(), column.size() / dim, dim);
+}
+
+/// Consistent map of every mode: each displacement component is a scalar field on the points.
+/// Returns [n_modes, n_target, dim] row-major.
+io::MatrixRM map_modes(const rbf::RbfInterpolator& map, const Eigen::MatrixXd& shapes, int dim,
+                       Eigen::MatrixXd& component_fields) {
+  const Eigen::Index n_modes = shapes.cols(), n_source = map.source_count();
+  component_fields.resize(n_source, n_modes * dim);  // column m·dim + c
+  for (Eigen::Index m = 0; m < n_modes; ++m)
+    component_fields.middleCols(m * dim, dim) = vertex_rows(shapes.col(m), dim);
+  const Eigen::MatrixXd mapped = map.apply(component_fields);  // n_target × (n_modes·dim)
+  io::MatrixRM out(n_modes, map.target_count() * dim);
+  for (Eigen::Index m = 0; m < n_modes; ++m)
+    for (Eigen::Index t = 0; t < map.target_count(); ++t)
+      for (int c = 0; c < dim; ++c) out(m, t * dim + c) = mapped(t, m * dim + c);
+  return out;
+}
+
+/// Leave-some-out error of each mode: the worst of its components.
+Eigen::VectorXd mode_errors(const rbf::QualityReport& q, Eigen::Index n_modes, int dim) {
+  Eigen::VectorXd e(n_modes);
+  for (Eigen::Index m = 0; m < n_modes; ++m) e[m] = q.field_error.segment(m * dim, dim).maxCoeff();
+  return e;
+}
+
+rbf::RbfOptions rbf_options(const io::Scene& scene) {
+  rbf::RbfOptions o;
+  o.support_factor = scene.number("map.support_factor");
+  o.support_radius = scene.number("map.support_radius");
+  o.far_factor = scene.number("map.far_factor");
+  return o;
+}
+
+void check_far_targets(const rbf::QualityReport& q, const mesh::SurfaceMesh& target,
+                       const io::Scene& scene) {
+  if (q.far_targets == 0) return;
+  const auto worst = target.vertices.row(q.worst_target);
+  input_error("{}: {} of {} target vertices lie farther than {:.3g} m ({} source spacings) from the "
+              "structure's surface nodes; the worst, vertex {} at ({}), is {:.3g} m away. Is the "
+              "target surface the structure's wetted surface, in metres?",
+              scene.file().string(), q.far_targets, target.vertices.rows(), q.far_tolerance,
+              scene.number("map.far_factor"), q.worst_target, fmt::join(worst, ", "),
+              q.worst_target_distance);
+}
+
+void write_mapped(io::ArtefactWriter& w, const mesh::SurfaceMesh& target, const io::MatrixRM& shapes,
+                  const SourceModes& s, const Eigen::VectorXd& errors, const rbf::QualityReport& q) {
+  const auto n_modes = static_cast<std::uint64_t>(s.shapes.cols());
+  w.write(ds::target_vertices, io::MatrixRM(target.vertices));
+  w.write(ds::target_cells, io::IndexMatrixRM(target.cells));
+  w.write(ds::mapped_shapes, shapes.data(),
+          {n_modes, static_cast<std::uint64_t>(target.vertices.rows()), static_cast<std::uint64_t>(target.dim)});
+  w.write_vector(ds::frequencies_hz, s.frequencies_hz);
+  w.write_vector(ds::omega, s.omega);
+  w.write_vector(ds::damping_ratio, s.damping_ratio);
+  w.write(ds::participation_translation, s.participation_translation);
+  w.write(ds::participation_rotation, s.participation_rotation);
+  w.write_vector(ds::mapping_field_error, errors);
+  w.set_attribute("support_radius_m", q.support_radius);
+  w.set_attribute("source_spacing_m", q.source_spacing);
+  w.set_attribute("far_tolerance_m", q.far_tolerance);
+  w.set_attribute("worst_target_distance_m", q.worst_target_distance);
+  w.set_attribute("condition_estimate", q.condition_estimate);
+  w.set_attribute("polynomial_terms", static_cast<std::int64_t>(q.polynomial_terms));
+  w.set_attribute("dropped_directions", static_cast<std::int64_t>(q.dropped_directions));
+  w.set_attribute("mean_neighbours", q.mean_neighbours);
+}
+
+std::vector<io::InputRecord> map_inputs(const io::Scene& scene, const std::filesystem::path& modes) {
+  std::vector<io::InputRecord> inputs{io::input_record("scene", scene.file()),
+                                      io::input_record("modes", modes)};
+  if (scene.string("map.target") == "file")
+    inputs.push_back(io::input_record("target", scene.file_path("map.file")));
+  return inputs;
+}
+
+void write_mapped_xdmf(const std::filesystem::path& h5, const mesh::SurfaceMesh& target, Eigen::Index n_modes) {
+  const auto n = static_cast<std::uint64_t>(target.vertices.rows());
+  const auto dim = static_cast<std::uint64_t>(target.dim);
+  io::XdmfGrid grid{.name = "mapped_modes", .dim = target.dim,
+                    .topology = target.dim == 2 ? "Polyline" : "Triangle",
+                    .cells_dataset = ds::target_cells,
+                    .cells = static_cast<std::uint64_t>(target.cells.rows()),
+                    .nodes_per_cell = dim, .nodes_dataset = ds::target_vertices, .nodes = n, .fields = {}};
+  for (Eigen::Index m = 0; m < n_modes; ++m)
+    grid.fields.push_back({fmt::format("mode_{}", m + 1), true, ds::mapped_shapes,
+                           {static_cast<std::uint64_t>(n_modes), n, dim}, m});
+  io::write_xdmf(std::filesystem::path(h5).replace_extension(".xdmf"), h5, {grid});
+}
+
+}  // namespace
+
+void validate_map_scene(const io::Scene& scene) {
+  if (scene.string("map.target") != "file") return;
+  if (scene.string("map.file").empty())
+    input_error("{}: map.file is required for map.target = \"file\"", scene.file().string());
+  if (!std::filesystem::exists(scene.file_path("map.file")))
+    input_error("{}: target surface '{}' does not exist", scene.where("map.file"),
+                scene.file_path("map.file").string());
+}
+
+void run_map_stage(const io::Scene& scene, const std::filesystem::path& modes_artefact,
+                   const std::filesystem::path& output) {
+  validate_map_scene(scene);
+  const io::ArtefactReader reader(modes_artefact, io::modes_schema());
+  const SourceModes source = read_source_modes(reader);
+  const mesh::SurfaceMesh target = target_surface(scene, source);
+  const int dim = source.surface.dim;
+  const rbf::RbfInterpolator map(source.surface.vertices, target.vertices, rbf_options(scene));
+  Eigen::MatrixXd component_fields;
+  const io::MatrixRM shapes = map_modes(map, source.shapes, dim, component_fields);
+  const rbf::QualityReport quality = map.quality_report(component_fields);
+  check_far_targets(quality, target, scene);
+  const Eigen::VectorXd errors = mode_errors(quality, source.shapes.cols(), dim);
+
+  io::ArtefactWriter writer(output, io::mapped_modes_schema(), "fsi-map", scene.parameters_for("fsi-map"),
+                            map_inputs(scene, modes_artefact));
+  write_mapped(writer, target, shapes, source, errors, quality);
+  writer.commit();
+  write_mapped_xdmf(output, target, source.shapes.cols());
+  spdlog::info("fsi-map: {} modes from {} structure surface nodes onto {} target vertices; support "
+               "radius {:.3g} m ({:.3g} spacings), condition estimate {:.3g}, {:.1f} neighbours per "
+               "row, interpolation error estimate per mode: {:.2e}",
+               source.shapes.cols(), source.surface.vertices.rows(), target.vertices.rows(),
+               quality.support_radius, quality.support_radius / quality.source_spacing,
+               quality.condition_estimate, quality.mean_neighbours, fmt::join(errors, ", "));
+}
+
+}  // namespace hm::driver

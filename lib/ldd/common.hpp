@@ -1,0 +1,27 @@
+#pragma once
+// Small types shared by the LDD (Lagrangian differencing dynamics) numerical core, for 2-D and
+// 3-D from one code base: the dimension D is a template parameter, instantiated for 2 and 3 in
+// the .cpp files. Lengths in metres, velocities in m/s, pressure in Pa (gauge), density kg/m³.
+#include <cstdint>
+
+#include <Eigen/Core>
+
+namespace hm::ldd {
+
+template <int D>
+using Vec = Eigen::Matrix<double, D, 1>;
+template <int D>
+using Mat = Eigen::Matrix<double, D, D>;
+
+/// Index of a point (a run holds fewer than 2³¹ points).
+using Index = std::int32_t;
+
+/// Weight of eqs. (6)–(9): Wendland C2, W(q) = (1 − q)⁴(1 + 4q) for q = r/h < 1, else 0.
+/// The operators are invariant to a scaling of W, so it is not normalised.
+inline double wendland_c2(double q) {
+  if (q >= 1.0) return 0.0;
+  const double s = 1.0 - q, s2 = s * s;
+  return s2 * s2 * (1.0 + 4.0 * q);
+}
+
+}  // namespace hm::ldd

@@ -1,0 +1,211 @@
+#include "ldd/operators.hpp"
+
+#include <cmath>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <Eigen/LU>
+
+#include "core/errors.hpp"
+
+namespace hm::ldd {
+namespace {
+
+/// Number of unknowns of the second-order fit: gradient + upper Hessian.
+template <int D>
+constexpr int wls_size = D + D * (D + 1) / 2;
+
+/// Monomials of the second-order fit at s = r/h: s_a, then ½ s_a² (a = 0..D−1), then s_a s_b (a<b).
+template <int D>
+Eigen::Matrix<double, wls_size<D>, 1> wls_basis(const Vec<D>& s) {
+  Eigen::Matrix<double, wls_size<D>, 1> p;
+  int k = 0;
+  for (int a = 0; a < D; ++a) p[k++] = s[a];
+  for (int a = 0; a < D; ++a) p[k++] = 0.5 * s[a] * s[a];
+  for (int a = 0; a < D; ++a)
+    for (int b = a + 1; b < D; ++b) p[k++] = s[a] * s[b];
+  return p;
+}
+
+/// Second-order WLS Laplacian coefficients of point i into c (false if the fit is singular).
+template <int D>
+bool wls_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i, double h,
+                   double* c) {
+  constexpr int K = wls_size<D>;
+  if (static_cast<int>(nbr.size()) < K) return false;
+  Eigen::Matrix<double, K, K> G = Eigen::Matrix<double, K, K>::Zero();
+  for (Index j : nbr) {
+    const Vec<D> s = (x[j] - x[i]) / h;
+    const auto p = wls_basis<D>(s);
+    G.noalias() += wendland_c2(s.norm()) * p * p.transpose();
+  }
+  Eigen::Matrix<double, K, 1> e = Eigen::Matrix<double, K, 1>::Zero();
+  e.template segment<D>(D).setOnes();  // ∇²f = Σ_a H_aa = Σ_a coefficient of ½ s_a², / h²
+  // Cholesky; a pivot ratio below 1e-6 (condition ≳ 1e12) means the stencil cannot resolve
+  // every second derivative (points on a line or plane): no fit.
+  const Eigen::LLT<Eigen::Matrix<double, K, K>> llt(G);
+  if (llt.info() != Eigen::Success) return false;
+  const auto pivots = llt.matrixLLT().diagonal();
+  if (pivots.minCoeff() < 1e-6 * pivots.maxCoeff()) return false;
+  const Eigen::Matrix<double, K, 1> y = llt.solve(e);
+  for (std::size_t k = 0; k < nbr.size(); ++k) {
+    const Vec<D> s = (x[nbr[k]] - x[i]) / h;
+    c[k] = wendland_c2(s.norm()) * y.dot(wls_basis<D>(s)) / (h * h);
+  }
+  return true;
+}
+
+/// Eq. 7 coefficients of point i into c; returns whether a modified weight was negative.
+template <int D>
+bool offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i, double h,
+                      const Vec<D>& Bo, double* c) {
+  double denominator = 0.0;
+  bool negative = false;
+  for (std::size_t k = 0; k < nbr.size(); ++k) {
+    const Vec<D> r = x[nbr[k]] - x[i];
+    const double w = wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo));
+    negative = negative || w < 0.0;
+    c[k] = w;
+    denominator += w * r.squaredNorm();
+  }
+  // D_i is negative on strongly one-sided stencils (most modified weights negative); eq. 7 stays
+  // exact for |r|² as long as D_i ≠ 0. Zero only on a degenerate stencil: the row stays zero.
+  const double scale = denominator != 0.0 ? 2.0 * D / denominator : 0.0;
+  for (std::size_t k = 0; k < nbr.size(); ++k) c[k] *= scale;
+  return negative;
+}
+
+}  // namespace
+
+template <int D>
+Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
+                               const OperatorOptions& opt) {
+  const Index n = nb.points();
+  HM_ASSERT(static_cast<std::size_t>(n) == x.size(), "operators: {} lists for {} points", n,
+            x.size());
+  const double h = nb.radius;
+  const int min_neighbours = opt.min_neighbours > 0 ? opt.min_neighbours : (D == 2 ? 4 : 10);
+  Operators<D> ops;
+  ops.radius = h;
+  ops.renormalisation.assign(static_cast<std::size_t>(n), Mat<D>::Zero());
+  ops.offset.assign(static_cast<std::size_t>(n), Vec<D>::Zero());
+  ops.number_density.assign(static_cast<std::size_t>(n), 0.0);
+  ops.offset_ratio.assign(static_cast<std::size_t>(n), 0.0);
+  ops.lambda_min.assign(static_cast<std::size_t>(n), 0.0);
+  ops.flags.assign(static_cast<std::size_t>(n), 0);
+  ops.laplacian.assign(nb.indices.size(), 0.0);
+
+#pragma omp parallel for schedule(dynamic, 128)
+  for (Index i = 0; i < n; ++i) {
+    const auto nbr = nb.of(i);
+    Mat<D> A = Mat<D>::Zero();
+    Vec<D> o = Vec<D>::Zero();
+    double density = 0.0, moment = 0.0;
+    for (Index j : nbr) {
+      const Vec<D> r = x[j] - x[i];
+      const double d = r.norm(), w = wendland_c2(d / h);
+      A.noalias() += w * r * r.transpose();
+      o += w * r;
+      density += w;
+      moment += w * d;
+    }
+    ops.number_density[i] = density;
+    ops.offset[i] = o;
+    ops.offset_ratio[i] = moment > 0.0 ? o.norm() / moment : 1.0;
+    if (static_cast<int>(nbr.size()) < min_neighbours || A.trace() <= 0.0) {
+      ops.flags[i] = op_isolated;
+      continue;
+    }
+    const Mat<D> M = D * A / A.trace();
+    const double lambda =
+        Eigen::SelfAdjointEigenSolver<Mat<D>>(M, Eigen::EigenvaluesOnly).eigenvalues()[0];
+    ops.lambda_min[i] = lambda;
+    std::uint8_t flags = 0;
+    if (lambda < opt.lambda_c) {
+      flags |= op_degenerate;
+      ops.renormalisation[i] =
+          (A + opt.lambda_c * A.trace() / D * Mat<D>::Identity()).inverse();
+    } else {
+      ops.renormalisation[i] = A.inverse();
+    }
+    double* c = ops.laplacian.data() + nb.offsets[i];
+    if (offset_laplacian<D>(x, nbr, i, h, ops.renormalisation[i] * o, c)) flags |= op_negative;
+    const bool want_wls =
+        opt.laplacian == LaplacianScheme::wls_everywhere ||
+        (opt.laplacian == LaplacianScheme::wls_where_needed &&
+         ((flags & op_negative) || ops.offset_ratio[i] > opt.one_sided_offset));
+    if (want_wls && wls_laplacian<D>(x, nbr, i, h, c)) flags |= op_wls;
+    ops.flags[i] = flags;
+  }
+  return ops;
+}
+
+template <int D>
+std::vector<Vec<D>> gradient(std::span<const Vec<D>> x, const Neighbours& nb,
+                             const Operators<D>& ops, std::span<const double> f) {
+  const Index n = nb.points();
+  std::vector<Vec<D>> g(static_cast<std::size_t>(n), Vec<D>::Zero());
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    if (ops.isolated(i)) continue;
+    Vec<D> s = Vec<D>::Zero();
+    for (Index j : nb.of(i)) {
+      const Vec<D> r = x[j] - x[i];
+      s += wendland_c2(r.norm() / ops.radius) * (f[j] - f[i]) * r;
+    }
+    g[i] = ops.renormalisation[i] * s;
+  }
+  return g;
+}
+
+template <int D>
+std::vector<double> divergence(std::span<const Vec<D>> x, const Neighbours& nb,
+                               const Operators<D>& ops, std::span<const Vec<D>> u) {
+  const Index n = nb.points();
+  std::vector<double> div(static_cast<std::size_t>(n), 0.0);
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    if (ops.isolated(i)) continue;
+    Mat<D> grad = Mat<D>::Zero();  // Σ W (u_j − u_i) ⊗ r, then ∇·u = tr(grad B)
+    for (Index j : nb.of(i)) {
+      const Vec<D> r = x[j] - x[i];
+      grad.noalias() += wendland_c2(r.norm() / ops.radius) * (u[j] - u[i]) * r.transpose();
+    }
+    div[i] = (grad * ops.renormalisation[i]).trace();
+  }
+  return div;
+}
+
+template <int D>
+std::vector<double> laplacian(const Neighbours& nb, const Operators<D>& ops,
+                              std::span<const double> f) {
+  const Index n = nb.points();
+  std::vector<double> lap(static_cast<std::size_t>(n), 0.0);
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    double s = 0.0;
+    for (auto k = nb.offsets[i]; k < nb.offsets[i + 1]; ++k)
+      s += ops.laplacian[static_cast<std::size_t>(k)] * (f[nb.indices[k]] - f[i]);
+    lap[i] = s;
+  }
+  return lap;
+}
+
+template Operators<2> compute_operators<2>(std::span<const Vec<2>>, const Neighbours&,
+                                           const OperatorOptions&);
+template Operators<3> compute_operators<3>(std::span<const Vec<3>>, const Neighbours&,
+                                           const OperatorOptions&);
+template std::vector<Vec<2>> gradient<2>(std::span<const Vec<2>>, const Neighbours&,
+                                         const Operators<2>&, std::span<const double>);
+template std::vector<Vec<3>> gradient<3>(std::span<const Vec<3>>, const Neighbours&,
+                                         const Operators<3>&, std::span<const double>);
+template std::vector<double> divergence<2>(std::span<const Vec<2>>, const Neighbours&,
+                                           const Operators<2>&, std::span<const Vec<2>>);
+template std::vector<double> divergence<3>(std::span<const Vec<3>>, const Neighbours&,
+                                           const Operators<3>&, std::span<const Vec<3>>);
+template std::vector<double> laplacian<2>(const Neighbours&, const Operators<2>&,
+                                          std::span<const double>);
+template std::vector<double> laplacian<3>(const Neighbours&, const Operators<3>&,
+                                          std::span<const double>);
+
+}  // namespace hm::ldd
