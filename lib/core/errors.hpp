@@ -62,7 +62,9 @@ template <typename... Args>
     if (!(cond)) ::hm::assertion_failed(#cond, __FILE__, __LINE__, fmt::format("" __VA_ARGS__)); \
   } while (0)
 #else
+// Compiled out, but `cond` stays referenced so that it raises no unused-variable warnings.
 #define HM_ASSERT(cond, ...) \
   do {                       \
+    if (false) (void)(cond); \
   } while (0)
 #endif
