@@ -35,9 +35,9 @@ SourceModes read_source_modes(const io::ArtefactReader& r) {
   s.surface.cells = r.read_indices(ds::modes_surface_cells);
   const auto n_modes = static_cast<Eigen::Index>(r.extent("n_modes"));
   const std::vector<double> stacked = r.read_values(ds::surface_shapes);  // [mode][vertex][c]
-  s.shapes = Eigen::Map<const Eigen::MatrixXd>(stacked.data(),
-                                               static_cast<Eigen::Index>(stacked.size()) / std::max<Eigen::Index>(n_modes, 1),
-                                               n_modes);
+  s.shapes = Eigen::Map<const Eigen::MatrixXd>(
+      stacked.data(),
+      static_cast<Eigen::Index>(stacked.size()) / std::max<Eigen::Index>(n_modes, 1), n_modes);
   s.frequencies_hz = vector_of(r, ds::frequencies_hz);
   s.omega = vector_of(r, ds::omega);
   s.damping_ratio = vector_of(r, ds::damping_ratio);
@@ -51,8 +51,8 @@ mesh::SurfaceMesh target_surface(const io::Scene& scene, const SourceModes& sour
   if (scene.string("map.target") == "file") {
     target = geometry::read_surface_file(scene.file_path("map.file"));
     if (target.dim != source.surface.dim)
-      input_error("{}: the target surface is {}-D but the structure is {}-D", scene.where("map.file"),
-                  target.dim, source.surface.dim);
+      input_error("{}: the target surface is {}-D but the structure is {}-D",
+                  scene.where("map.file"), target.dim, source.surface.dim);
   }
   if (const double max_edge = scene.number("map.max_edge"); max_edge > 0)
     target = geometry::refine_uniformly(target, max_edge);
@@ -100,21 +100,24 @@ void check_far_targets(const rbf::QualityReport& q, const mesh::SurfaceMesh& tar
                        const io::Scene& scene) {
   if (q.far_targets == 0) return;
   const auto worst = target.vertices.row(q.worst_target);
-  input_error("{}: {} of {} target vertices lie farther than {:.3g} m ({} source spacings) from the "
-              "structure's surface nodes; the worst, vertex {} at ({}), is {:.3g} m away. Is the "
-              "target surface the structure's wetted surface, in metres?",
-              scene.file().string(), q.far_targets, target.vertices.rows(), q.far_tolerance,
-              scene.number("map.far_factor"), q.worst_target, fmt::join(worst, ", "),
-              q.worst_target_distance);
+  input_error(
+      "{}: {} of {} target vertices lie farther than {:.3g} m ({} source spacings) from the "
+      "structure's surface nodes; the worst, vertex {} at ({}), is {:.3g} m away. Is the "
+      "target surface the structure's wetted surface, in metres?",
+      scene.file().string(), q.far_targets, target.vertices.rows(), q.far_tolerance,
+      scene.number("map.far_factor"), q.worst_target, fmt::join(worst, ", "),
+      q.worst_target_distance);
 }
 
-void write_mapped(io::ArtefactWriter& w, const mesh::SurfaceMesh& target, const io::MatrixRM& shapes,
-                  const SourceModes& s, const Eigen::VectorXd& errors, const rbf::QualityReport& q) {
+void write_mapped(io::ArtefactWriter& w, const mesh::SurfaceMesh& target,
+                  const io::MatrixRM& shapes, const SourceModes& s, const Eigen::VectorXd& errors,
+                  const rbf::QualityReport& q) {
   const auto n_modes = static_cast<std::uint64_t>(s.shapes.cols());
   w.write(ds::target_vertices, io::MatrixRM(target.vertices));
   w.write(ds::target_cells, io::IndexMatrixRM(target.cells));
   w.write(ds::mapped_shapes, shapes.data(),
-          {n_modes, static_cast<std::uint64_t>(target.vertices.rows()), static_cast<std::uint64_t>(target.dim)});
+          {n_modes, static_cast<std::uint64_t>(target.vertices.rows()),
+           static_cast<std::uint64_t>(target.dim)});
   w.write_vector(ds::frequencies_hz, s.frequencies_hz);
   w.write_vector(ds::omega, s.omega);
   w.write_vector(ds::damping_ratio, s.damping_ratio);
@@ -131,7 +134,8 @@ void write_mapped(io::ArtefactWriter& w, const mesh::SurfaceMesh& target, const 
   w.set_attribute("mean_neighbours", q.mean_neighbours);
 }
 
-std::vector<io::InputRecord> map_inputs(const io::Scene& scene, const std::filesystem::path& modes) {
+std::vector<io::InputRecord> map_inputs(const io::Scene& scene,
+                                        const std::filesystem::path& modes) {
   std::vector<io::InputRecord> inputs{io::input_record("scene", scene.file()),
                                       io::input_record("modes", modes)};
   if (scene.string("map.target") == "file")
@@ -139,17 +143,25 @@ std::vector<io::InputRecord> map_inputs(const io::Scene& scene, const std::files
   return inputs;
 }
 
-void write_mapped_xdmf(const std::filesystem::path& h5, const mesh::SurfaceMesh& target, Eigen::Index n_modes) {
+void write_mapped_xdmf(const std::filesystem::path& h5, const mesh::SurfaceMesh& target,
+                       Eigen::Index n_modes) {
   const auto n = static_cast<std::uint64_t>(target.vertices.rows());
   const auto dim = static_cast<std::uint64_t>(target.dim);
-  io::XdmfGrid grid{.name = "mapped_modes", .dim = target.dim,
+  io::XdmfGrid grid{.name = "mapped_modes",
+                    .dim = target.dim,
                     .topology = target.dim == 2 ? "Polyline" : "Triangle",
                     .cells_dataset = ds::target_cells,
                     .cells = static_cast<std::uint64_t>(target.cells.rows()),
-                    .nodes_per_cell = dim, .nodes_dataset = ds::target_vertices, .nodes = n, .fields = {}};
+                    .nodes_per_cell = dim,
+                    .nodes_dataset = ds::target_vertices,
+                    .nodes = n,
+                    .fields = {}};
   for (Eigen::Index m = 0; m < n_modes; ++m)
-    grid.fields.push_back({fmt::format("mode_{}", m + 1), true, ds::mapped_shapes,
-                           {static_cast<std::uint64_t>(n_modes), n, dim}, m});
+    grid.fields.push_back({fmt::format("mode_{}", m + 1),
+                           true,
+                           ds::mapped_shapes,
+                           {static_cast<std::uint64_t>(n_modes), n, dim},
+                           m});
   io::write_xdmf(std::filesystem::path(h5).replace_extension(".xdmf"), h5, {grid});
 }
 
@@ -178,17 +190,18 @@ void run_map_stage(const io::Scene& scene, const std::filesystem::path& modes_ar
   check_far_targets(quality, target, scene);
   const Eigen::VectorXd errors = mode_errors(quality, source.shapes.cols(), dim);
 
-  io::ArtefactWriter writer(output, io::mapped_modes_schema(), "fsi-map", scene.parameters_for("fsi-map"),
-                            map_inputs(scene, modes_artefact));
+  io::ArtefactWriter writer(output, io::mapped_modes_schema(), "fsi-map",
+                            scene.parameters_for("fsi-map"), map_inputs(scene, modes_artefact));
   write_mapped(writer, target, shapes, source, errors, quality);
   writer.commit();
   write_mapped_xdmf(output, target, source.shapes.cols());
-  spdlog::info("fsi-map: {} modes from {} structure surface nodes onto {} target vertices; support "
-               "radius {:.3g} m ({:.3g} spacings), condition estimate {:.3g}, {:.1f} neighbours per "
-               "row, interpolation error estimate per mode: {:.2e}",
-               source.shapes.cols(), source.surface.vertices.rows(), target.vertices.rows(),
-               quality.support_radius, quality.support_radius / quality.source_spacing,
-               quality.condition_estimate, quality.mean_neighbours, fmt::join(errors, ", "));
+  spdlog::info(
+      "fsi-map: {} modes from {} structure surface nodes onto {} target vertices; support "
+      "radius {:.3g} m ({:.3g} spacings), condition estimate {:.3g}, {:.1f} neighbours per "
+      "row, interpolation error estimate per mode: {:.2e}",
+      source.shapes.cols(), source.surface.vertices.rows(), target.vertices.rows(),
+      quality.support_radius, quality.support_radius / quality.source_spacing,
+      quality.condition_estimate, quality.mean_neighbours, fmt::join(errors, ", "));
 }
 
 }  // namespace hm::driver

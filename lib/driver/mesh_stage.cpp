@@ -1,6 +1,7 @@
 #include "driver/mesh_stage.hpp"
 
 #include <ranges>
+#include <set>
 
 #include "core/errors.hpp"
 #include "core/log.hpp"
@@ -9,15 +10,17 @@
 #include "mesh/boundary.hpp"
 #include "mesh/quality.hpp"
 #include "mesh/structure_mesher.hpp"
+#include "mesh/wall_mesher.hpp"
 
 namespace hm::driver {
 namespace {
 
 void require_structure(const io::Scene& scene) {
   if (!scene.has("structure"))
-    input_error("{}: the scene has no [structure] section, so there is nothing for fsi-mesh to "
-                "mesh (a rigid-only scene skips the structure stages)",
-                scene.file().string());
+    input_error(
+        "{}: the scene has no [structure] section, so there is nothing for fsi-mesh to "
+        "mesh (a rigid-only scene skips the structure stages)",
+        scene.file().string());
 }
 
 Eigen::VectorXd primitive_vector(const io::Scene& scene, const std::string& key) {
@@ -68,7 +71,65 @@ std::vector<io::InputRecord> mesh_inputs(const io::Scene& scene) {
   std::vector<io::InputRecord> inputs{io::input_record("scene", scene.file())};
   if (scene.string("structure.geometry.kind") == "file")
     inputs.push_back(io::input_record("geometry", scene.file_path("structure.geometry.file")));
+  for (const auto& wall : scene.array("wall"))
+    if (wall.string("kind") == "file")
+      inputs.push_back(io::input_record("wall:" + wall.string("name"), wall.file_path("file")));
   return inputs;
+}
+
+Eigen::VectorXd wall_vector(const io::SceneView& wall, const std::string& key) {
+  const Eigen::VectorXd v = wall.vector(key);
+  if (v.size() == 0)
+    input_error("{}: {} is required for kind = \"{}\"", wall.file().string(), wall.full(key),
+                wall.string("kind"));
+  return v;
+}
+
+void validate_wall(const io::SceneView& wall, int dim) {
+  const std::string kind = wall.string("kind");
+  if ((kind == "rectangle" && dim != 2) || (kind == "box" && dim != 3))
+    input_error("{}: kind = \"{}\" needs case.dimension = {}", wall.where("kind"), kind,
+                kind == "rectangle" ? 2 : 3);
+  if (kind == "file") {
+    if (!std::filesystem::exists(wall.file_path("file")))
+      input_error("{}: wall surface file '{}' does not exist", wall.where("file"),
+                  wall.file_path("file").string());
+    return;
+  }
+  wall_vector(wall, "origin");
+  if ((wall_vector(wall, "size").array() <= 0).any())
+    input_error("{}: every edge length must be > 0 m", wall.where("size"));
+}
+
+mesh::SurfaceMesh mesh_wall(const io::SceneView& wall, int dim) {
+  mesh::WallOptions options;
+  options.dim = dim;
+  options.size = wall.number("mesh_size");
+  options.faces = wall.strings("faces");
+  options.flip_normals = wall.boolean("flip_normals");
+  const std::string kind = wall.string("kind");
+  if (kind == "rectangle")
+    return mesh::mesh_rectangle_walls({wall_vector(wall, "origin"), wall_vector(wall, "size")},
+                                      options);
+  if (kind == "box")
+    return mesh::mesh_box_walls({wall_vector(wall, "origin"), wall_vector(wall, "size")}, options);
+  return mesh::mesh_wall_file(wall.file_path("file"), options);
+}
+
+std::map<std::string, mesh::SurfaceMesh> write_walls(io::ArtefactWriter& writer,
+                                                     const io::Scene& scene) {
+  std::map<std::string, mesh::SurfaceMesh> walls;
+  for (const auto& wall : scene.array("wall")) {
+    const mesh::SurfaceMesh& surface = walls[wall.string("name")] =
+        mesh_wall(wall, scene.dimension());
+    const std::string prefix = io::ds::walls + wall.string("name");
+    writer.write(prefix + "/vertices", io::MatrixRM(surface.vertices));
+    writer.write(prefix + "/cells", io::IndexMatrixRM(surface.cells));
+    spdlog::info("fsi-mesh: wall '{}': {} vertices, {} {}", wall.string("name"),
+                 surface.vertices.rows(), surface.cells.rows(),
+                 surface.dim == 2 ? "segments" : "triangles");
+  }
+  return walls;
 }
 
 }  // namespace
@@ -94,6 +155,13 @@ mesh::MeshOptions mesh_options_from_scene(const io::Scene& scene) {
 
 void validate_mesh_scene(const io::Scene& scene) {
   (void)mesh_options_from_scene(scene);
+  std::set<std::string> wall_names;
+  for (const auto& wall : scene.array("wall")) {
+    validate_wall(wall, scene.dimension());
+    if (!wall_names.insert(wall.string("name")).second)
+      input_error("{}: a wall named '{}' is already declared", wall.where("name"),
+                  wall.string("name"));
+  }
   check_kind_matches_dimension(scene);
   const std::string kind = scene.string("structure.geometry.kind");
   if (kind != "file") {
@@ -115,10 +183,11 @@ void run_mesh_stage(const io::Scene& scene, const std::filesystem::path& output)
   io::ArtefactWriter writer(output, io::mesh_schema(), "fsi-mesh", scene.parameters_for("fsi-mesh"),
                             inputs);
   write_structure_mesh(writer, structure, surface, quality);
+  const auto walls = write_walls(writer, scene);
   writer.set_attribute("quality_min", quality.size() ? quality.minCoeff() : 0.0);
   writer.set_attribute("quality_mean", quality.size() ? quality.mean() : 0.0);
   writer.commit();
-  write_mesh_xdmf(output, structure);
+  write_mesh_xdmf(output, structure, walls);
   spdlog::info("fsi-mesh: wrote {} ({} nodes, {} {} cells, {} boundary facets, groups: {})",
                output.string(), structure.node_count(), structure.cells.rows(),
                structure.dim == 2 ? "tri6" : "tet10", structure.facets.rows(),

@@ -61,7 +61,8 @@ modal::EigenOptions eigen_options(const io::Scene& scene) {
 modal::Damping damping(const io::Scene& scene) {
   modal::Damping d;
   const double zeta = scene.number("modes.damping_ratio");
-  const double alpha = scene.number("modes.rayleigh_alpha"), beta = scene.number("modes.rayleigh_beta");
+  const double alpha = scene.number("modes.rayleigh_alpha"),
+               beta = scene.number("modes.rayleigh_beta");
   if (alpha > 0 || beta > 0) {
     if (zeta > 0)
       input_error("{}: give either modes.damping_ratio or modes.rayleigh_alpha/beta, not both",
@@ -98,10 +99,12 @@ Eigen::VectorXd orthogonality_per_mode(const modal::ModeSet& modes, const fem::S
 }
 
 /// [n_modes, n_nodes, dim] row-major from the n_dofs × n_modes shapes (DOF = dim·node + c).
-io::MatrixRM stacked_shapes(const Eigen::MatrixXd& shapes) { return io::MatrixRM(shapes.transpose()); }
+io::MatrixRM stacked_shapes(const Eigen::MatrixXd& shapes) {
+  return io::MatrixRM(shapes.transpose());
+}
 
-io::MatrixRM surface_shapes(const Eigen::MatrixXd& shapes, const std::vector<mesh::Index>& volume_node,
-                            int dim) {
+io::MatrixRM surface_shapes(const Eigen::MatrixXd& shapes,
+                            const std::vector<mesh::Index>& volume_node, int dim) {
   io::MatrixRM out(shapes.cols(), static_cast<Eigen::Index>(volume_node.size()) * dim);
   for (Eigen::Index m = 0; m < shapes.cols(); ++m)
     for (std::size_t v = 0; v < volume_node.size(); ++v)
@@ -110,8 +113,8 @@ io::MatrixRM surface_shapes(const Eigen::MatrixXd& shapes, const std::vector<mes
   return out;
 }
 
-void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes, const Eigen::VectorXd& orthogonality,
-                 const MeshArtefact& mesh) {
+void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes,
+                 const Eigen::VectorXd& orthogonality, const MeshArtefact& mesh) {
   const auto n_modes = static_cast<std::uint64_t>(modes.count());
   const auto n_nodes = static_cast<std::uint64_t>(mesh.structure.node_count());
   const auto dim = static_cast<std::uint64_t>(mesh.structure.dim);
@@ -121,7 +124,8 @@ void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes, const Eigen
   w.write_vector(ds::frequencies_hz, modes.frequency_hz);
   w.write_vector(ds::damping_ratio, modes.damping_ratio);
   w.write(ds::shapes, stacked_shapes(modes.shapes).data(), {n_modes, n_nodes, dim});
-  w.write(ds::surface_shapes, surface_shapes(modes.shapes, mesh.surface.volume_node, mesh.structure.dim).data(),
+  w.write(ds::surface_shapes,
+          surface_shapes(modes.shapes, mesh.surface.volume_node, mesh.structure.dim).data(),
           {n_modes, n_surface, dim});
   w.write_vector(ds::residual, modes.residuals);
   w.write_vector(ds::orthogonality_error, orthogonality);
@@ -130,7 +134,8 @@ void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes, const Eigen
   w.write(ds::effective_mass_translation, io::MatrixRM(modes.translational_effective_mass));
   w.write(ds::modes_nodes, io::MatrixRM(mesh.structure.nodes));
   w.write(ds::modes_cells, io::IndexMatrixRM(mesh.structure.cells));
-  if (mesh.structure.dim == 3) w.write(ds::modes_cells_vtk, io::IndexMatrixRM(cells_in_vtk_order(mesh.structure)));
+  if (mesh.structure.dim == 3)
+    w.write(ds::modes_cells_vtk, io::IndexMatrixRM(cells_in_vtk_order(mesh.structure)));
   w.write(ds::modes_surface_vertices, io::MatrixRM(mesh.surface.surface.vertices));
   w.write(ds::modes_surface_cells, io::IndexMatrixRM(mesh.surface.surface.cells));
   w.write(ds::modes_surface_node, mesh.surface.volume_node);
@@ -148,11 +153,13 @@ void write_solver_attributes(io::ArtefactWriter& w, const modal::ModeSet& modes)
   w.set_attribute("operator_applications", static_cast<std::int64_t>(s.op_applications));
   w.set_attribute("factorisation_seconds", s.factorisation_seconds);
   w.set_attribute("lanczos_seconds", s.lanczos_seconds);
-  w.set_attribute("max_relative_residual", modes.residuals.size() ? modes.residuals.maxCoeff() : 0.0);
+  w.set_attribute("max_relative_residual",
+                  modes.residuals.size() ? modes.residuals.maxCoeff() : 0.0);
   w.set_attribute("max_orthogonality_error", modes.orthogonality_error);
 }
 
-void write_modes_xdmf(const std::filesystem::path& h5, const MeshArtefact& mesh, const modal::ModeSet& modes) {
+void write_modes_xdmf(const std::filesystem::path& h5, const MeshArtefact& mesh,
+                      const modal::ModeSet& modes) {
   const auto& m = mesh.structure;
   const auto n_nodes = static_cast<std::uint64_t>(m.node_count());
   io::XdmfGrid grid{.name = "modes",
@@ -165,14 +172,18 @@ void write_modes_xdmf(const std::filesystem::path& h5, const MeshArtefact& mesh,
                     .nodes = n_nodes,
                     .fields = {}};
   for (int i = 0; i < modes.count(); ++i)
-    grid.fields.push_back({fmt::format("mode_{}_{:.4g}Hz", i + 1, modes.frequency_hz[i]), true, ds::shapes,
-                           {static_cast<std::uint64_t>(modes.count()), n_nodes, static_cast<std::uint64_t>(m.dim)},
-                           i});
+    grid.fields.push_back(
+        {fmt::format("mode_{}_{:.4g}Hz", i + 1, modes.frequency_hz[i]),
+         true,
+         ds::shapes,
+         {static_cast<std::uint64_t>(modes.count()), n_nodes, static_cast<std::uint64_t>(m.dim)},
+         i});
   io::write_xdmf(std::filesystem::path(h5).replace_extension(".xdmf"), h5, {grid});
 }
 
 void log_frequency_table(const modal::ModeSet& modes, const Eigen::VectorXd& orthogonality) {
-  std::string table = "  mode   frequency [Hz]   omega [rad/s]   zeta     residual   orthogonality\n";
+  std::string table =
+      "  mode   frequency [Hz]   omega [rad/s]   zeta     residual   orthogonality\n";
   for (int i = 0; i < modes.count(); ++i)
     table += fmt::format("  {:>4}   {:>14.6f}   {:>13.5f}   {:<6.4g}   {:.2e}   {:.2e}\n", i + 1,
                          modes.frequency_hz[i], modes.omega[i], modes.damping_ratio[i],
@@ -197,15 +208,18 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
   const MeshArtefact mesh = read_structure_mesh(reader);
   if (mesh.structure.dim != scene.dimension())
     input_error("'{}' holds a {}-D mesh but {} says case.dimension = {}; rerun fsi-mesh",
-                mesh_artefact.string(), mesh.structure.dim, scene.file().string(), scene.dimension());
+                mesh_artefact.string(), mesh.structure.dim, scene.file().string(),
+                scene.dimension());
 
-  const fem::SystemMatrices system = fem::assemble(mesh.structure, elastic_model(scene), "structure.material");
+  const fem::SystemMatrices system =
+      fem::assemble(mesh.structure, elastic_model(scene), "structure.material");
   const std::vector<std::string> clamped = clamped_groups(scene);
   const fem::DofMap dofs = fem::DofMap::clamp_groups(mesh.structure, clamped, "structure.clamped");
   spdlog::info("fsi-modes: {} DOFs ({} free, {} clamped)", dofs.full_count(), dofs.free_count(),
                dofs.clamped_count());
-  const modal::EigenSolution solution = modal::solve_eigenproblem(
-      dofs.reduce(system.stiffness), dofs.reduce(system.mass), mode_request(scene), eigen_options(scene));
+  const modal::EigenSolution solution =
+      modal::solve_eigenproblem(dofs.reduce(system.stiffness), dofs.reduce(system.mass),
+                                mode_request(scene), eigen_options(scene));
   const modal::ModeSet modes = modal::build_mode_set(solution, system, dofs, mesh.structure,
                                                      reference_point(scene), damping(scene));
   const Eigen::VectorXd orthogonality = orthogonality_per_mode(modes, system.mass);
@@ -213,20 +227,23 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
 
   const std::filesystem::path target =
       converged ? output : std::filesystem::path(output).replace_extension(".failed.h5");
-  io::ArtefactWriter writer(target, io::modes_schema(), "fsi-modes", scene.parameters_for("fsi-modes"),
-                            {io::input_record("scene", scene.file()), io::input_record("mesh", mesh_artefact)});
+  io::ArtefactWriter writer(
+      target, io::modes_schema(), "fsi-modes", scene.parameters_for("fsi-modes"),
+      {io::input_record("scene", scene.file()), io::input_record("mesh", mesh_artefact)});
   write_modes(writer, modes, orthogonality, mesh);
   write_solver_attributes(writer, modes);
   if (!converged)
-    writer.set_attribute(io::attr::status, fmt::format("{}: {} of {} modes converged ({})", modes.solver.status,
-                                                       modes.solver.converged, modes.solver.requested,
-                                                       modes.solver.message));
+    writer.set_attribute(
+        io::attr::status,
+        fmt::format("{}: {} of {} modes converged ({})", modes.solver.status,
+                    modes.solver.converged, modes.solver.requested, modes.solver.message));
   writer.commit();
   if (!converged)
-    numerical_error("fsi-modes: the eigensolver did not converge ({}: {} of {} modes; {}); the converged "
-                    "modes are in '{}', nothing was written at '{}'",
-                    modes.solver.status, modes.solver.converged, modes.solver.requested, modes.solver.message,
-                    target.string(), output.string());
+    numerical_error(
+        "fsi-modes: the eigensolver did not converge ({}: {} of {} modes; {}); the converged "
+        "modes are in '{}', nothing was written at '{}'",
+        modes.solver.status, modes.solver.converged, modes.solver.requested, modes.solver.message,
+        target.string(), output.string());
   write_modes_xdmf(output, mesh, modes);
   log_frequency_table(modes, orthogonality);
 }

@@ -19,7 +19,8 @@ void write_structure_mesh(io::ArtefactWriter& writer, const mesh::StructureMesh&
                           const mesh::BoundarySurface& surface, const Eigen::VectorXd& quality) {
   writer.write(ds::structure_nodes, io::MatrixRM(mesh.nodes));
   writer.write(ds::structure_cells, io::IndexMatrixRM(mesh.cells));
-  if (mesh.dim == 3) writer.write(ds::structure_cells_vtk, io::IndexMatrixRM(cells_in_vtk_order(mesh)));
+  if (mesh.dim == 3)
+    writer.write(ds::structure_cells_vtk, io::IndexMatrixRM(cells_in_vtk_order(mesh)));
   writer.write(ds::structure_facets, io::IndexMatrixRM(mesh.facets));
   for (const auto& [name, nodes] : mesh.node_groups)
     writer.write(ds::structure_node_groups + name, nodes);
@@ -48,7 +49,8 @@ MeshArtefact read_structure_mesh(const io::ArtefactReader& reader) {
   if (m.cells.size() && (m.cells.minCoeff() < 0 || m.cells.maxCoeff() >= m.node_count()))
     input_error("'{}': {} refers to nodes outside [0, {})", reader.path().string(),
                 ds::structure_cells, m.node_count());
-  const std::string node_groups(ds::structure_node_groups), facet_groups(ds::structure_facet_groups);
+  const std::string node_groups(ds::structure_node_groups),
+      facet_groups(ds::structure_facet_groups);
   for (const auto& name : reader.children(node_groups.substr(0, node_groups.size() - 1)))
     m.node_groups[name] = reader.read_index_values(node_groups + name);
   for (const auto& name : reader.children(facet_groups.substr(0, facet_groups.size() - 1)))
@@ -60,7 +62,8 @@ MeshArtefact read_structure_mesh(const io::ArtefactReader& reader) {
   return out;
 }
 
-void write_mesh_xdmf(const std::filesystem::path& h5_path, const mesh::StructureMesh& mesh) {
+void write_mesh_xdmf(const std::filesystem::path& h5_path, const mesh::StructureMesh& mesh,
+                     const std::map<std::string, mesh::SurfaceMesh>& walls) {
   const auto cells = static_cast<std::uint64_t>(mesh.cells.rows());
   io::XdmfGrid grid{.name = "structure",
                     .dim = mesh.dim,
@@ -71,7 +74,20 @@ void write_mesh_xdmf(const std::filesystem::path& h5_path, const mesh::Structure
                     .nodes_dataset = ds::structure_nodes,
                     .nodes = static_cast<std::uint64_t>(mesh.node_count()),
                     .fields = {{"quality", false, ds::structure_quality, {cells}, -1}}};
-  io::write_xdmf(std::filesystem::path(h5_path).replace_extension(".xdmf"), h5_path, {grid});
+  std::vector<io::XdmfGrid> grids{grid};
+  for (const auto& [name, wall] : walls) {
+    const std::string prefix = io::ds::walls + name;
+    grids.push_back({.name = "wall_" + name,
+                     .dim = wall.dim,
+                     .topology = wall.dim == 2 ? "Polyline" : "Triangle",
+                     .cells_dataset = prefix + "/cells",
+                     .cells = static_cast<std::uint64_t>(wall.cells.rows()),
+                     .nodes_per_cell = static_cast<std::uint64_t>(wall.dim),
+                     .nodes_dataset = prefix + "/vertices",
+                     .nodes = static_cast<std::uint64_t>(wall.vertices.rows()),
+                     .fields = {}});
+  }
+  io::write_xdmf(std::filesystem::path(h5_path).replace_extension(".xdmf"), h5_path, grids);
 }
 
 }  // namespace hm::driver

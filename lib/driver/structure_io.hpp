@@ -2,6 +2,7 @@
 // The structure mesh in artefacts: written by fsi-mesh (hydromodal.mesh, under /structure) and
 // copied by fsi-modes (hydromodal.modes, under /mesh) so that an archived mode set carries the
 // mesh it was computed on.
+#include <map>
 #include <string>
 
 #include "io/artefact.hpp"
@@ -24,7 +25,8 @@ struct MeshArtefact {
 /// Reads the structure of a hydromodal.mesh artefact (checked against its schema).
 MeshArtefact read_structure_mesh(const io::ArtefactReader& reader);
 
-/// XDMF sidecar of a mesh artefact: the structure with its quality field.
-void write_mesh_xdmf(const std::filesystem::path& h5_path, const mesh::StructureMesh& mesh);
+/// XDMF sidecar of a mesh artefact: the structure with its quality field, and each wall.
+void write_mesh_xdmf(const std::filesystem::path& h5_path, const mesh::StructureMesh& mesh,
+                     const std::map<std::string, mesh::SurfaceMesh>& walls = {});
 
 }  // namespace hm::driver

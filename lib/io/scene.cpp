@@ -49,6 +49,8 @@ std::string type_name(KeyType type) {
       return "a string";
     case KeyType::vector:
       return "an array of numbers";
+    case KeyType::string_list:
+      return "an array of strings";
   }
   return "?";
 }
@@ -167,17 +169,15 @@ class Validator {
       case KeyType::boolean:
         if (!node.is_boolean()) return bad_type();
         return;
-      case KeyType::string: {
+      case KeyType::string:
         if (!node.is_string()) return bad_type();
-        const std::string value = node.as_string()->get();
-        if (!d.choices.empty() &&
-            std::find(d.choices.begin(), d.choices.end(), value) == d.choices.end()) {
-          const std::string guess = closest_match(value, d.choices);
-          errors_.push_back(
-              fmt::format("{}: {} = \"{}\" is not allowed: expected one of {}{}", at(node), path,
-                          value, join(d.choices, ", "),
-                          guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess)));
-        }
+        return check_choice(d, node.as_string()->get(), node, path);
+      case KeyType::string_list: {
+        auto* array = node.as_array();
+        if (!array || !std::all_of(array->begin(), array->end(),
+                                   [](const toml::node& e) { return e.is_string(); }))
+          return bad_type();
+        for (const auto& element : *array) check_choice(d, element.as_string()->get(), node, path);
         return;
       }
       case KeyType::vector: {
@@ -190,6 +190,17 @@ class Validator {
         return;
       }
     }
+  }
+
+  void check_choice(const KeyDecl& d, const std::string& value, const toml::node& node,
+                    const std::string& path) {
+    if (d.choices.empty() ||
+        std::find(d.choices.begin(), d.choices.end(), value) != d.choices.end())
+      return;
+    const std::string guess = closest_match(value, d.choices);
+    errors_.push_back(fmt::format(
+        "{}: {} = \"{}\" is not allowed: expected one of {}{}", at(node), path, value,
+        join(d.choices, ", "), guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess)));
   }
 
   void check_range(const KeyDecl& d, double value, const toml::node& node,
@@ -312,6 +323,14 @@ Eigen::VectorXd SceneView::vector(const std::string& key) const {
   for (std::size_t i = 0; i < array->size(); ++i) out[i] = array->get(i)->value<double>().value();
   return out;
 }
+std::vector<std::string> SceneView::strings(const std::string& key) const {
+  const auto* array = node(key).as_array();
+  HM_ASSERT(array, "{} is not an array", full(key));
+  std::vector<std::string> out;
+  for (const auto& element : *array) out.push_back(element.value<std::string>().value());
+  return out;
+}
+
 SceneView SceneView::section(const std::string& key) const {
   const auto* table = node(key).as_table();
   HM_ASSERT(table, "{} is not a table", full(key));

@@ -13,7 +13,7 @@
 
 namespace hm::io {
 
-enum class KeyType { number, integer, boolean, string, vector };
+enum class KeyType { number, integer, boolean, string, vector, string_list };
 
 struct KeyDecl {
   std::string path;  ///< dotted; "[]" marks an array of tables: "structure.group[].name"
@@ -22,7 +22,7 @@ struct KeyDecl {
   std::string unit;          ///< SI unit ("1" dimensionless, "" for strings/flags)
   double min = -1e300, max = 1e300;
   bool min_exclusive = false, max_exclusive = false;
-  std::vector<std::string> choices;  ///< allowed strings (empty: any)
+  std::vector<std::string> choices;  ///< allowed strings, also each of a string_list (empty: any)
   int vector_size = -1;              ///< required length of a vector; -1 any; 0 = case.dimension
   std::string doc;
   std::vector<std::string> stages;  ///< stages whose artefacts depend on this key
@@ -53,6 +53,7 @@ class SceneView {
   bool boolean(const std::string& key) const;
   std::string string(const std::string& key) const;
   Eigen::VectorXd vector(const std::string& key) const;
+  std::vector<std::string> strings(const std::string& key) const;  ///< string_list keys
   SceneView section(const std::string& key) const;
   std::vector<SceneView> array(const std::string& key) const;  ///< array of tables
   /// A path in the scene resolved against the scene file's folder.

@@ -57,6 +57,21 @@ KeyDecl vector(std::string path, std::string def, std::string unit, int size, st
   return d;
 }
 
+KeyDecl string_list(std::string path, std::string def, std::vector<std::string> choices,
+                    std::string doc, std::vector<std::string> stages) {
+  KeyDecl d =
+      text(std::move(path), std::move(def), std::move(choices), std::move(doc), std::move(stages));
+  d.type = KeyType::string_list;
+  return d;
+}
+
+KeyDecl boolean(std::string path, std::string def, std::string doc,
+                std::vector<std::string> stages) {
+  KeyDecl d = text(std::move(path), std::move(def), {}, std::move(doc), std::move(stages));
+  d.type = KeyType::boolean;
+  return d;
+}
+
 }  // namespace
 
 const std::vector<SectionDecl>& scene_sections() {
@@ -71,6 +86,9 @@ const std::vector<SectionDecl>& scene_sections() {
        "boundary node/facet inside the box belongs to the group. Primitives also have the groups "
        "xmin, xmax, ymin, ymax (, zmin, zmax); .geo files bring their own physical groups."},
       {"structure.material", true, "Linear isotropic elastic material."},
+      {"wall[]", false,
+       "Rigid fluid walls as surface meshes (segments in 2-D, triangles in 3-D, normals into the "
+       "fluid), meshed by fsi-mesh into mesh.h5 under /walls/<name>."},
       {"modes", false, "Mode extraction (fsi-modes)."},
       {"map", false, "Mapping of the mode shapes onto the surface the fluid sees (fsi-map)."},
   };
@@ -95,8 +113,9 @@ const std::vector<KeyDecl>& scene_keys() {
            mesh_stage),
       vector("structure.geometry.origin", "[]", "m", 0,
              "lowest corner of the rectangle/box primitive (required for those kinds)", mesh_stage),
-      vector("structure.geometry.size", "[]", "m", 0, "edge lengths of the rectangle/box primitive (required for those kinds)",
-             mesh_stage, 0.0),
+      vector("structure.geometry.size", "[]", "m", 0,
+             "edge lengths of the rectangle/box primitive (required for those kinds)", mesh_stage,
+             0.0),
 
       // [structure.mesh]
       number("structure.mesh.size", "", "m", 0, inf, "target element edge length", mesh_stage,
@@ -108,6 +127,25 @@ const std::vector<KeyDecl>& scene_keys() {
       text("structure.group[].name", "", {}, "group name (referenced by other keys)", mesh_stage),
       vector("structure.group[].min", "", "m", 0, "lower corner of the selection box", mesh_stage),
       vector("structure.group[].max", "", "m", 0, "upper corner of the selection box", mesh_stage),
+
+      // [[wall]]
+      text("wall[].name", "", {}, "wall name (a dataset group /walls/<name> of mesh.h5)",
+           mesh_stage),
+      text("wall[].kind", "", {"rectangle", "box", "file"},
+           "the inside of a rectangle (2-D) or box (3-D) tank given by origin and size, or a "
+           "surface file (.stl, .obj, .ply; or .geo curves/surfaces)",
+           mesh_stage),
+      vector("wall[].origin", "[]", "m", 0, "lowest corner of the tank primitive", mesh_stage),
+      vector("wall[].size", "[]", "m", 0, "edge lengths of the tank primitive", mesh_stage, 0.0),
+      string_list("wall[].faces", "[]", {"xmin", "xmax", "ymin", "ymax", "zmin", "zmax"},
+                  "faces of the primitive to keep (empty: all; an open-top tank omits ymax/zmax)",
+                  mesh_stage),
+      text("wall[].file", "\"\"", {}, "surface file for kind = \"file\", relative to the scene",
+           mesh_stage),
+      number("wall[].mesh_size", "", "m", 0, inf, "target edge length of the wall mesh", mesh_stage,
+             true),
+      boolean("wall[].flip_normals", "false",
+              "reverse the normals of a file wall whose fluid side is the other one", mesh_stage),
 
       // [structure]
       text("structure.formulation", "\"plane_strain\"", {"plane_strain", "plane_stress"},

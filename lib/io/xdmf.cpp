@@ -10,12 +10,15 @@
 namespace hm::io {
 namespace {
 
-std::string dims_text(const std::vector<std::uint64_t>& dims) { return fmt::format("{}", fmt::join(dims, " ")); }
+std::string dims_text(const std::vector<std::uint64_t>& dims) {
+  return fmt::format("{}", fmt::join(dims, " "));
+}
 
 std::string data_item(const std::string& file, const std::string& dataset,
                       const std::vector<std::uint64_t>& dims, const char* number_type) {
   return fmt::format(
-      "<DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"8\" Format=\"HDF\">{}:{}</DataItem>",
+      "<DataItem Dimensions=\"{}\" NumberType=\"{}\" Precision=\"8\" "
+      "Format=\"HDF\">{}:{}</DataItem>",
       dims_text(dims), number_type, file, dataset);
 }
 
@@ -34,8 +37,9 @@ std::string field_xml(const XdmfField& f, const std::string& file) {
     item = data_item(file, f.dataset, f.dataset_dims, "Float");
   }
   const bool vector = shown.size() == 2 && shown[1] > 1;
-  return fmt::format("      <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"{}\">{}</Attribute>\n",
-                     f.name, vector ? "Vector" : "Scalar", f.on_nodes ? "Node" : "Cell", item);
+  return fmt::format(
+      "      <Attribute Name=\"{}\" AttributeType=\"{}\" Center=\"{}\">{}</Attribute>\n", f.name,
+      vector ? "Vector" : "Scalar", f.on_nodes ? "Node" : "Cell", item);
 }
 
 }  // namespace
@@ -48,12 +52,12 @@ void write_xdmf(const std::filesystem::path& xdmf_path, const std::filesystem::p
       "<Xdmf Version=\"2.0\">\n  <Domain>\n";
   for (const auto& g : grids) {
     xml += fmt::format("    <Grid Name=\"{}\" GridType=\"Uniform\">\n", g.name);
-    xml += fmt::format("      <Topology TopologyType=\"{}\" NumberOfElements=\"{}\">{}</Topology>\n",
-                       g.topology, g.cells,
-                       data_item(file, g.cells_dataset, {g.cells, g.nodes_per_cell}, "Int"));
-    xml += fmt::format("      <Geometry GeometryType=\"{}\">{}</Geometry>\n", g.dim == 2 ? "XY" : "XYZ",
-                       data_item(file, g.nodes_dataset, {g.nodes, static_cast<std::uint64_t>(g.dim)},
-                                 "Float"));
+    xml += fmt::format(
+        "      <Topology TopologyType=\"{}\" NumberOfElements=\"{}\">{}</Topology>\n", g.topology,
+        g.cells, data_item(file, g.cells_dataset, {g.cells, g.nodes_per_cell}, "Int"));
+    xml += fmt::format(
+        "      <Geometry GeometryType=\"{}\">{}</Geometry>\n", g.dim == 2 ? "XY" : "XYZ",
+        data_item(file, g.nodes_dataset, {g.nodes, static_cast<std::uint64_t>(g.dim)}, "Float"));
     for (const auto& f : g.fields) xml += field_xml(f, file);
     xml += "    </Grid>\n";
   }

@@ -10,8 +10,8 @@ namespace hm::io {
 
 struct XdmfField {
   std::string name;
-  bool on_nodes = true;  ///< Center="Node" (else "Cell")
-  std::string dataset;   ///< HDF5 path in the artefact
+  bool on_nodes = true;                     ///< Center="Node" (else "Cell")
+  std::string dataset;                      ///< HDF5 path in the artefact
   std::vector<std::uint64_t> dataset_dims;  ///< full dims of `dataset`
   /// For one slice of a stacked dataset ([n, rows, cols]): the index along the first axis.
   std::int64_t slice = -1;
@@ -19,11 +19,11 @@ struct XdmfField {
 
 struct XdmfGrid {
   std::string name;
-  int dim = 3;                        ///< 2 → Geometry "XY", 3 → "XYZ"
-  std::string topology;               ///< "Tri_6", "Tet_10", "Triangle", "Polyline", ...
-  std::string cells_dataset;          ///< n_cells × nodes_per_cell, 0-based, XDMF node order
+  int dim = 3;                ///< 2 → Geometry "XY", 3 → "XYZ"
+  std::string topology;       ///< "Tri_6", "Tet_10", "Triangle", "Polyline", ...
+  std::string cells_dataset;  ///< n_cells × nodes_per_cell, 0-based, XDMF node order
   std::uint64_t cells = 0, nodes_per_cell = 0;
-  std::string nodes_dataset;          ///< n_nodes × dim [m]
+  std::string nodes_dataset;  ///< n_nodes × dim [m]
   std::uint64_t nodes = 0;
   std::vector<XdmfField> fields;
 };

@@ -6,8 +6,9 @@
 int main(int argc, char** argv) {
   const hm::stages::StageInfo info{
       .name = "fsi-map",
-      .summary = "Interpolate mode shapes from the structure's surface onto the fluid-side surface "
-                 "(RBF, Wendland C2 + linear polynomial) into a hydromodal.mapped_modes artefact.",
+      .summary =
+          "Interpolate mode shapes from the structure's surface onto the fluid-side surface "
+          "(RBF, Wendland C2 + linear polynomial) into a hydromodal.mapped_modes artefact.",
       .inputs = {{"modes", "mode artefact written by fsi-modes"}},
   };
   return hm::stages::run_stage(argc, argv, info, [](const hm::stages::StageArgs& args) {

@@ -6,8 +6,9 @@
 int main(int argc, char** argv) {
   const hm::stages::StageInfo info{
       .name = "fsi-mesh",
-      .summary = "Mesh the structure of a scene: tri6 (2-D) or tet10 (3-D) with named groups, its "
-                 "boundary surface and quality, written to a hydromodal.mesh artefact (+ .xdmf).",
+      .summary =
+          "Mesh the structure of a scene: tri6 (2-D) or tet10 (3-D) with named groups, its "
+          "boundary surface and quality, written to a hydromodal.mesh artefact (+ .xdmf).",
   };
   return hm::stages::run_stage(argc, argv, info, [](const hm::stages::StageArgs& args) {
     const hm::io::Scene scene = hm::io::Scene::load(args.positional);

@@ -6,8 +6,9 @@
 int main(int argc, char** argv) {
   const hm::stages::StageInfo info{
       .name = "fsi-modes",
-      .summary = "Extract natural frequencies and mass-normalised mode shapes of the structure "
-                 "(linear elasticity, ARPACK shift-invert Lanczos) into a hydromodal.modes artefact.",
+      .summary =
+          "Extract natural frequencies and mass-normalised mode shapes of the structure "
+          "(linear elasticity, ARPACK shift-invert Lanczos) into a hydromodal.modes artefact.",
       .inputs = {{"mesh", "structure mesh artefact written by fsi-mesh"}},
   };
   return hm::stages::run_stage(argc, argv, info, [](const hm::stages::StageArgs& args) {

@@ -1,12 +1,14 @@
-// fsi-report — Plot probes against reference data and tabulate errors. The stage is not available in this version: its
-// command line and scene validation exist so pipelines and scripts can be written against them.
+// fsi-report — Plot probes against reference data and tabulate errors. The stage is not available
+// in this version: its command line and scene validation exist so pipelines and scripts can be
+// written against them.
 #include "io/scene.hpp"
 #include "stage_main.hpp"
 
 int main(int argc, char** argv) {
   const hm::stages::StageInfo info{
       .name = "fsi-report",
-      .summary = "Plot probes against reference data and tabulate errors (not available in this version).",
+      .summary =
+          "Plot probes against reference data and tabulate errors (not available in this version).",
       .inputs = {{"results", "results artefact written by fsi-simulate"}},
   };
   return hm::stages::run_stage(argc, argv, info, [](const hm::stages::StageArgs& args) {

@@ -21,7 +21,8 @@ using namespace hm;
 namespace {
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("hm_chain_" + name + "_" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("hm_chain_" + name + "_" + std::to_string(getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
@@ -96,7 +97,8 @@ TEST(StructureChain, GateModesRoundTripAndIdentityMap) {
   driver::run_mesh_stage(scene, dir / "mesh.h5");
   driver::run_modes_stage(scene, dir / "mesh.h5", dir / "modes.h5");
   driver::run_map_stage(scene, dir / "modes.h5", dir / "mapped.h5");
-  const io::Scene refined = write_scene(dir / "refined.toml", std::string(gate) + "[map]\nmax_edge = 0.0002\n");
+  const io::Scene refined =
+      write_scene(dir / "refined.toml", std::string(gate) + "[map]\nmax_edge = 0.0002\n");
   driver::run_map_stage(refined, dir / "modes.h5", dir / "refined.h5");
   EXPECT_GT(io::ArtefactReader(dir / "refined.h5", io::mapped_modes_schema()).extent("n_target"),
             io::ArtefactReader(dir / "mapped.h5", io::mapped_modes_schema()).extent("n_target"));
@@ -115,7 +117,8 @@ TEST(StructureChain, GateModesRoundTripAndIdentityMap) {
   const io::MatrixRM on_target = stacked(mapped, io::ds::mapped_shapes);
   ASSERT_EQ(on_surface.rows(), on_target.rows());
   ASSERT_EQ(on_surface.cols(), on_target.cols());
-  EXPECT_LE((on_surface - on_target).cwiseAbs().maxCoeff(), 1e-12 * on_surface.cwiseAbs().maxCoeff());
+  EXPECT_LE((on_surface - on_target).cwiseAbs().maxCoeff(),
+            1e-12 * on_surface.cwiseAbs().maxCoeff());
   EXPECT_EQ(mapped.read_values(io::ds::frequencies_hz), f);
 }
 
@@ -126,8 +129,8 @@ TEST(StructureChain, PlateMapsOntoARefinedSurfaceAndRefusesBadTargets) {
   driver::run_modes_stage(scene, dir / "mesh.h5", dir / "modes.h5");
   driver::run_map_stage(scene, dir / "modes.h5", dir / "mapped.h5");
   const io::ArtefactReader mapped(dir / "mapped.h5", io::mapped_modes_schema());
-  EXPECT_GT(mapped.extent("n_target"), io::ArtefactReader(dir / "modes.h5", io::modes_schema())
-                                           .extent("n_surface_vertices"));
+  EXPECT_GT(mapped.extent("n_target"),
+            io::ArtefactReader(dir / "modes.h5", io::modes_schema()).extent("n_surface_vertices"));
   // Refinement keeps the structure's surface vertices first: there the interpolant must return
   // the source values (RBF interpolation is exact at its centres).
   const io::ArtefactReader source(dir / "modes.h5", io::modes_schema());
@@ -152,13 +155,18 @@ TEST(StructureChain, PlateMapsOntoARefinedSurfaceAndRefusesBadTargets) {
   beside.vertices.col(1).array() += 0.05;
   geometry::write_stl_ascii(beside, dir / "beside.stl");
 
-  const io::Scene mm = write_scene(dir / "mm.toml", plate("[map]\ntarget = \"file\"\nfile = \"plate_mm.stl\"\n"));
-  const std::string units = error_of([&] { driver::run_map_stage(mm, dir / "modes.h5", dir / "mm.h5"); });
+  const io::Scene mm =
+      write_scene(dir / "mm.toml", plate("[map]\ntarget = \"file\"\nfile = \"plate_mm.stl\"\n"));
+  const std::string units =
+      error_of([&] { driver::run_map_stage(mm, dir / "modes.h5", dir / "mm.h5"); });
   EXPECT_NE(units.find("units differ by ~1000? (mm vs m)"), std::string::npos) << units;
   EXPECT_FALSE(fs::exists(dir / "mm.h5"));
 
-  const io::Scene far = write_scene(dir / "far.toml", plate("[map]\ntarget = \"file\"\nfile = \"beside.stl\"\n"));
-  const std::string disjoint = error_of([&] { driver::run_map_stage(far, dir / "modes.h5", dir / "far.h5"); });
-  EXPECT_NE(disjoint.find("target points lie farther than the support radius"), std::string::npos) << disjoint;
+  const io::Scene far =
+      write_scene(dir / "far.toml", plate("[map]\ntarget = \"file\"\nfile = \"beside.stl\"\n"));
+  const std::string disjoint =
+      error_of([&] { driver::run_map_stage(far, dir / "modes.h5", dir / "far.h5"); });
+  EXPECT_NE(disjoint.find("target points lie farther than the support radius"), std::string::npos)
+      << disjoint;
   EXPECT_FALSE(fs::exists(dir / "far.h5"));
 }
