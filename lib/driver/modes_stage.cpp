@@ -1,5 +1,7 @@
 #include "driver/modes_stage.hpp"
 
+#include <chrono>
+
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
@@ -211,15 +213,21 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
                 mesh_artefact.string(), mesh.structure.dim, scene.file().string(),
                 scene.dimension());
 
+  const auto start = std::chrono::steady_clock::now();
+  const auto seconds = [&] {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  };
   const fem::SystemMatrices system =
       fem::assemble(mesh.structure, elastic_model(scene), "structure.material");
   const std::vector<std::string> clamped = clamped_groups(scene);
   const fem::DofMap dofs = fem::DofMap::clamp_groups(mesh.structure, clamped, "structure.clamped");
-  spdlog::info("fsi-modes: {} DOFs ({} free, {} clamped)", dofs.full_count(), dofs.free_count(),
-               dofs.clamped_count());
+  spdlog::info("fsi-modes: assembled K and M, {} DOFs ({} free, {} clamped), {:.2f} s",
+               dofs.full_count(), dofs.free_count(), dofs.clamped_count(), seconds());
   const modal::EigenSolution solution =
       modal::solve_eigenproblem(dofs.reduce(system.stiffness), dofs.reduce(system.mass),
                                 mode_request(scene), eigen_options(scene));
+  spdlog::info("fsi-modes: eigensolver done ({} factorisation {:.2f} s), {:.2f} s",
+               modal::to_string(solution.factorisation), solution.factorisation_seconds, seconds());
   const modal::ModeSet modes = modal::build_mode_set(solution, system, dofs, mesh.structure,
                                                      reference_point(scene), damping(scene));
   const Eigen::VectorXd orthogonality = orthogonality_per_mode(modes, system.mass);
