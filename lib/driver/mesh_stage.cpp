@@ -148,6 +148,8 @@ mesh::MeshOptions mesh_options_from_scene(const io::Scene& scene) {
       input_error("{}: the group box has max < min in some coordinate", group.where("max"));
     options.box_groups.push_back(box);
   }
+  for (const auto& refine : scene.array("structure.refine"))
+    options.group_sizes[refine.string("group")] = refine.number("size");
   if (const std::string clamped = scene.string("structure.clamped"); !clamped.empty())
     options.required_groups.push_back(clamped);
   return options;

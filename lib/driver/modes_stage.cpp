@@ -57,18 +57,31 @@ modal::EigenOptions eigen_options(const io::Scene& scene) {
                     : solver == "dense" ? modal::EigenBackend::dense
                                         : modal::EigenBackend::arpack;
   options.lanczos.tolerance = scene.number("modes.tolerance");
+  options.lanczos.max_restarts = static_cast<int>(scene.integer("modes.max_restarts"));
   return options;
 }
 
 modal::Damping damping(const io::Scene& scene) {
   modal::Damping d;
   const double zeta = scene.number("modes.damping_ratio");
+  const Eigen::VectorXd ratios = scene.vector("modes.damping_ratios");
+  const int given =
+      (zeta > 0) + (ratios.size() > 0) +
+      (scene.number("modes.rayleigh_alpha") > 0 || scene.number("modes.rayleigh_beta") > 0);
+  if (given > 1)
+    input_error(
+        "{}: give one of modes.damping_ratio, modes.damping_ratios or "
+        "modes.rayleigh_alpha/beta, not several",
+        scene.file().string());
+  if (ratios.size() > 0) {
+    d.kind = modal::Damping::Kind::per_mode;
+    d.ratios.assign(ratios.data(), ratios.data() + ratios.size());
+    d.context = "modes.damping_ratios";
+    return d;
+  }
   const double alpha = scene.number("modes.rayleigh_alpha"),
                beta = scene.number("modes.rayleigh_beta");
   if (alpha > 0 || beta > 0) {
-    if (zeta > 0)
-      input_error("{}: give either modes.damping_ratio or modes.rayleigh_alpha/beta, not both",
-                  scene.file().string());
     d.kind = modal::Damping::Kind::rayleigh;
     d.alpha_per_s = alpha;
     d.beta_s = beta;
@@ -134,6 +147,7 @@ void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes,
   w.write(ds::participation_translation, io::MatrixRM(modes.translational_participation));
   w.write(ds::participation_rotation, io::MatrixRM(modes.rotational_participation));
   w.write(ds::effective_mass_translation, io::MatrixRM(modes.translational_effective_mass));
+  w.write(ds::effective_mass_rotation, io::MatrixRM(modes.rotational_effective_mass));
   w.write(ds::modes_nodes, io::MatrixRM(mesh.structure.nodes));
   w.write(ds::modes_cells, io::IndexMatrixRM(mesh.structure.cells));
   if (mesh.structure.dim == 3)

@@ -85,6 +85,9 @@ const std::vector<SectionDecl>& scene_sections() {
        "Named boundary groups selected by an axis-aligned box (e.g. `clamped`, `wetted`); every "
        "boundary node/facet inside the box belongs to the group. Primitives also have the groups "
        "xmin, xmax, ymin, ymax (, zmin, zmax); .geo files bring their own physical groups."},
+      {"structure.refine[]", false,
+       "Smaller mesh sizes near named groups (a primitive's face, a .geo physical group or a box "
+       "group); gmsh grades the size away from them."},
       {"structure.material", true, "Linear isotropic elastic material."},
       {"wall[]", false,
        "Rigid fluid walls as surface meshes (segments in 2-D, triangles in 3-D, normals into the "
@@ -122,6 +125,11 @@ const std::vector<KeyDecl>& scene_keys() {
              true),
       number("structure.mesh.min_quality", "0.1", "1", 0, 1,
              "elements below this shape quality are reported as slivers", mesh_stage),
+
+      // [[structure.refine]]
+      text("structure.refine[].group", "", {}, "name of the group to refine near", mesh_stage),
+      number("structure.refine[].size", "", "m", 0, inf,
+             "target element size at the group (below structure.mesh.size)", mesh_stage, true),
 
       // [[structure.group]]
       text("structure.group[].name", "", {}, "group name (referenced by other keys)", mesh_stage),
@@ -175,6 +183,10 @@ const std::vector<KeyDecl>& scene_keys() {
              "when > 0, extract every mode below this frequency (up to modes.count)", modes_stage),
       number("modes.damping_ratio", "0.0", "1", 0, inf,
              "modal damping ratio zeta added to every mode", modes_stage),
+      vector("modes.damping_ratios", "[]", "1", -1,
+             "damping ratio of each mode, lowest first (instead of modes.damping_ratio; as many "
+             "values as modes are extracted)",
+             modes_stage, 0.0),
       number("modes.rayleigh_alpha", "0.0", "1/s", 0, inf,
              "Rayleigh mass-proportional damping: zeta_i += alpha / (2 omega_i)", modes_stage),
       number("modes.rayleigh_beta", "0.0", "s", 0, inf,
@@ -188,6 +200,9 @@ const std::vector<KeyDecl>& scene_keys() {
            modes_stage),
       number("modes.tolerance", "1e-12", "1", 0, 1e-3,
              "relative convergence tolerance of the Lanczos iteration", modes_stage, true),
+      integer("modes.max_restarts", "1000", 1, 1000000,
+              "implicit restarts of the Lanczos iteration before it gives up (exit code 3)",
+              modes_stage),
 
       // [map]
       text("map.target", "\"surface\"", {"surface", "file"},

@@ -81,6 +81,7 @@ inline constexpr const char* orthogonality_error = "/modes/orthogonality_error";
 inline constexpr const char* participation_translation = "/modes/participation_translation";
 inline constexpr const char* participation_rotation = "/modes/participation_rotation";
 inline constexpr const char* effective_mass_translation = "/modes/effective_mass_translation";
+inline constexpr const char* effective_mass_rotation = "/modes/effective_mass_rotation";
 inline constexpr const char* surface_shapes = "/modes/surface_shapes";
 inline constexpr const char* modes_nodes = "/mesh/nodes";
 inline constexpr const char* modes_cells = "/mesh/cells";
