@@ -20,7 +20,7 @@ FSI_INSPECT := $(BIN)/fsi-inspect/fsi-inspect
 .PHONY: all mesh modes map summary clean
 .DELETE_ON_ERROR:
 
-all: summary map
+all: map summary
 mesh: $(OUT)/mesh.h5
 modes: $(OUT)/modes.h5
 map: $(OUT)/mapped.h5

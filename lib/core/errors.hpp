@@ -2,6 +2,7 @@
 // Errors of hydromodal. User errors (bad arguments, bad input files, numerical failure of a
 // well-posed request) are exceptions carrying the exit code a stage's main() maps them to.
 // Broken invariants of our own code are HM_ASSERT failures (InternalError, exit code 4).
+// HM_ASSERT is compiled out of release builds: its condition must never have side effects.
 #include <stdexcept>
 #include <string>
 

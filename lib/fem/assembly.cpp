@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <bitset>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -97,20 +96,19 @@ Eigen::MatrixXd cell_coordinates(const mesh::StructureMesh& mesh, Index cell) {
 /// colour are scattered in parallel without atomics, colours one after the other, so every
 /// matrix entry is summed in the same order whatever the thread count (bitwise reproducible).
 std::vector<std::vector<Index>> colour_cells(const mesh::StructureMesh& mesh) {
-  constexpr std::size_t kMaxColours = 512;
-  std::vector<std::bitset<kMaxColours>> used(static_cast<std::size_t>(mesh.node_count()));
+  std::vector<std::vector<int>> node_colours(static_cast<std::size_t>(mesh.node_count()));
   std::vector<std::vector<Index>> colours;
+  std::vector<char> taken;
   for (Index c = 0; c < mesh.cells.rows(); ++c) {
-    std::bitset<kMaxColours> taken;
+    taken.assign(colours.size() + 1, 0);
     for (Index a = 0; a < mesh.cells.cols(); ++a)
-      taken |= used[static_cast<std::size_t>(mesh.cells(c, a))];
-    std::size_t colour = 0;
-    while (taken[colour]) ++colour;
-    HM_ASSERT(colour < kMaxColours, "cell {} needs more than {} colours", c, kMaxColours);
+      for (int used : node_colours[static_cast<std::size_t>(mesh.cells(c, a))]) taken[used] = 1;
+    const auto colour =
+        static_cast<std::size_t>(std::find(taken.begin(), taken.end(), 0) - taken.begin());
     if (colour == colours.size()) colours.emplace_back();
     colours[colour].push_back(c);
     for (Index a = 0; a < mesh.cells.cols(); ++a)
-      used[static_cast<std::size_t>(mesh.cells(c, a))].set(colour);
+      node_colours[static_cast<std::size_t>(mesh.cells(c, a))].push_back(static_cast<int>(colour));
   }
   return colours;
 }

@@ -274,9 +274,8 @@ void write_dataset(hid_t file, const std::string& path, hid_t memtype, hid_t fil
                             create_props.get(), H5P_DEFAULT),
                  H5Dclose);
   HM_ASSERT(dataset.valid(), "cannot create dataset {}", path);
-  if (count > 0)
-    HM_ASSERT(H5Dwrite(dataset.get(), memtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0,
-              "cannot write dataset {}", path);
+  if (count > 0 && H5Dwrite(dataset.get(), memtype, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) < 0)
+    input_error("cannot write dataset '{}' (disk full or file system error?)", path);
   write_string_attribute(dataset.get(), attr::unit, spec.unit);
   write_string_attribute(dataset.get(), attr::description, spec.doc);
 }
@@ -285,7 +284,10 @@ void write_dataset(hid_t file, const std::string& path, hid_t memtype, hid_t fil
 void ArtefactWriter::write(const std::string& path, const double* data, const Dims& dims) {
   const DatasetSpec& spec = declared(path, DType::f64, dims);
   for (std::uint64_t i = 0; i < product(dims); ++i)
-    HM_ASSERT(std::isfinite(data[i]), "non-finite value in dataset '{}' at flat index {}", path, i);
+    if (!std::isfinite(data[i]))
+      numerical_error(
+          "refusing to write a non-finite value ({}) into dataset '{}' at flat index {}", data[i],
+          path, i);
   write_dataset(file_->get(), path, H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, data, dims, spec);
   written_.push_back(path);
 }

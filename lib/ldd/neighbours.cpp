@@ -45,9 +45,10 @@ CellIndex<D> build_cells(std::span<const Vec<D>> x, double cell) {
   for (int a = 0; a < D; ++a) {
     g.dims[a] = static_cast<std::int64_t>(std::floor((hi[a] - g.lo[a]) / cell)) + 1;
     if (g.dims[a] > (std::int64_t{1} << (62 / D)))
-      numerical_error("neighbour search: the points span {} m along axis {}, {} cells of h = {} m; "
-                      "points have left the domain (a run diverged?)",
-                      hi[a] - g.lo[a], a, g.dims[a], cell);
+      numerical_error(
+          "neighbour search: the points span {} m along axis {}, {} cells of h = {} m; "
+          "points have left the domain (a run diverged?)",
+          hi[a] - g.lo[a], a, g.dims[a], cell);
   }
   const std::size_t n = x.size();
   std::vector<std::uint64_t> k(n);

@@ -12,9 +12,10 @@
 namespace hm::ldd {
 
 struct Neighbours {
-  double radius = 0.0;                 ///< support radius h [m]
-  std::vector<std::int64_t> offsets;   ///< size n + 1; list of i is indices[offsets[i], offsets[i+1])
-  std::vector<Index> indices;          ///< neighbour point indices, ascending within each list
+  double radius = 0.0;  ///< support radius h [m]
+  std::vector<std::int64_t>
+      offsets;                 ///< size n + 1; list of i is indices[offsets[i], offsets[i+1])
+  std::vector<Index> indices;  ///< neighbour point indices, ascending within each list
 
   Index points() const { return offsets.empty() ? 0 : static_cast<Index>(offsets.size() - 1); }
   std::int64_t pairs() const { return offsets.empty() ? 0 : offsets.back(); }

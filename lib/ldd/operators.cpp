@@ -13,7 +13,7 @@ namespace {
 
 /// Number of unknowns of the second-order fit: gradient + upper Hessian.
 template <int D>
-constexpr int wls_size = D + D * (D + 1) / 2;
+constexpr int wls_size = D + D*(D + 1) / 2;
 
 /// Monomials of the second-order fit at s = r/h: s_a, then ½ s_a² (a = 0..D−1), then s_a s_b (a<b).
 template <int D>
@@ -123,17 +123,15 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
     std::uint8_t flags = 0;
     if (lambda < opt.lambda_c) {
       flags |= op_degenerate;
-      ops.renormalisation[i] =
-          (A + opt.lambda_c * A.trace() / D * Mat<D>::Identity()).inverse();
+      ops.renormalisation[i] = (A + opt.lambda_c * A.trace() / D * Mat<D>::Identity()).inverse();
     } else {
       ops.renormalisation[i] = A.inverse();
     }
     double* c = ops.laplacian.data() + nb.offsets[i];
     if (offset_laplacian<D>(x, nbr, i, h, ops.renormalisation[i] * o, c)) flags |= op_negative;
-    const bool want_wls =
-        opt.laplacian == LaplacianScheme::wls_everywhere ||
-        (opt.laplacian == LaplacianScheme::wls_where_needed &&
-         ((flags & op_negative) || ops.offset_ratio[i] > opt.one_sided_offset));
+    const bool want_wls = opt.laplacian == LaplacianScheme::wls_everywhere ||
+                          (opt.laplacian == LaplacianScheme::wls_where_needed &&
+                           ((flags & op_negative) || ops.offset_ratio[i] > opt.one_sided_offset));
     if (want_wls && wls_laplacian<D>(x, nbr, i, h, c)) flags |= op_wls;
     ops.flags[i] = flags;
   }

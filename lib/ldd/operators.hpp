@@ -1,6 +1,6 @@
 #pragma once
-// Discrete operators of LDD (spec §1.7, the paper's eqs. 6–9), per point i over N_i, r_ij = r_j − r_i,
-// W_ij = W(|r_ij|/h) (Wendland C2):
+// Discrete operators of LDD (spec §1.7, the paper's eqs. 6–9), per point i over N_i, r_ij = r_j −
+// r_i, W_ij = W(|r_ij|/h) (Wendland C2):
 //   A_i = Σ W_ij r_ij ⊗ r_ij,  B_i = A_i⁻¹ (eq. 8),  o_i = Σ W_ij r_ij (eq. 9)
 //   gradient (eq. 6)   ⟨∇f⟩_i = B_i Σ W_ij r_ij (f_j − f_i)       exact for linear f
 //   divergence         ⟨∇·u⟩_i = Σ (W_ij B_i r_ij)·(u_j − u_i)
@@ -22,39 +22,39 @@ namespace hm::ldd {
 
 /// Which rows get the second-order WLS Laplacian instead of eq. 7.
 enum class LaplacianScheme : std::uint8_t {
-  offset_vector,  ///< eq. 7 everywhere
+  offset_vector,     ///< eq. 7 everywhere
   wls_where_needed,  ///< WLS where eq. 7 has a negative c_ij or the stencil is one-sided (default)
   wls_everywhere,    ///< WLS everywhere
 };
 
 struct OperatorOptions {
-  double lambda_c = 0.05;     ///< λ_c: conditioning threshold of M_i (§1.7.4)
-  int min_neighbours = 0;     ///< N_min; 0 = the spec's default, 4 (2-D) or 10 (3-D)
+  double lambda_c = 0.05;  ///< λ_c: conditioning threshold of M_i (§1.7.4)
+  int min_neighbours = 0;  ///< N_min; 0 = the spec's default, 4 (2-D) or 10 (3-D)
   /// ô_i above this marks a one-sided stencil that gets the WLS Laplacian. Jittered (0.3 dx)
-  /// interior stencils reach ≈ 0.06–0.1, half-space stencils 0.24–0.36; below τ_o = 0.2 of §1.8 so that
-  /// the second layer under a surface is caught too.
+  /// interior stencils reach ≈ 0.06–0.1, half-space stencils 0.24–0.36; below τ_o = 0.2 of §1.8 so
+  /// that the second layer under a surface is caught too.
   double one_sided_offset = 0.12;
   LaplacianScheme laplacian = LaplacianScheme::wls_where_needed;
 };
 
 /// Flags of a point's operators (bit set).
 enum OperatorFlag : std::uint8_t {
-  op_isolated = 1,     ///< fewer than N_min neighbours: no operators
-  op_degenerate = 2,   ///< λ_min(M_i) < λ_c: Tikhonov-regularised B_i
-  op_wls = 4,          ///< Laplacian row from the second-order WLS fit
-  op_negative = 8,     ///< eq. 7 had a negative weight on this stencil
+  op_isolated = 1,    ///< fewer than N_min neighbours: no operators
+  op_degenerate = 2,  ///< λ_min(M_i) < λ_c: Tikhonov-regularised B_i
+  op_wls = 4,         ///< Laplacian row from the second-order WLS fit
+  op_negative = 8,    ///< eq. 7 had a negative weight on this stencil
 };
 
 template <int D>
 struct Operators {
-  double radius = 0.0;                 ///< h [m]
-  std::vector<Mat<D>> renormalisation; ///< B_i [1/m²]
-  std::vector<Vec<D>> offset;          ///< o_i [m]
-  std::vector<double> number_density;  ///< n_i = Σ W_ij
-  std::vector<double> offset_ratio;    ///< ô_i = |o_i| / Σ W_ij |r_ij| ∈ [0, 1]
-  std::vector<double> lambda_min;      ///< smallest eigenvalue of M_i (1 for isotropic)
-  std::vector<std::uint8_t> flags;     ///< OperatorFlag bits
-  std::vector<double> laplacian;       ///< c_ij [1/m²], aligned with Neighbours::indices
+  double radius = 0.0;                  ///< h [m]
+  std::vector<Mat<D>> renormalisation;  ///< B_i [1/m²]
+  std::vector<Vec<D>> offset;           ///< o_i [m]
+  std::vector<double> number_density;   ///< n_i = Σ W_ij
+  std::vector<double> offset_ratio;     ///< ô_i = |o_i| / Σ W_ij |r_ij| ∈ [0, 1]
+  std::vector<double> lambda_min;       ///< smallest eigenvalue of M_i (1 for isotropic)
+  std::vector<std::uint8_t> flags;      ///< OperatorFlag bits
+  std::vector<double> laplacian;        ///< c_ij [1/m²], aligned with Neighbours::indices
 
   bool isolated(Index i) const { return flags[i] & op_isolated; }
 };

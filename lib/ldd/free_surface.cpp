@@ -1,0 +1,157 @@
+#include "ldd/free_surface.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "core/errors.hpp"
+
+namespace hm::ldd {
+namespace {
+
+/// Whether a neighbour of i covers the cone of half-angle acos(cos_cone) around `dir`.
+template <int D>
+bool cone_covered(const PointSet<D>& pts, const Neighbours& nb, Index i, const Vec<D>& dir,
+                  double cos_cone) {
+  const Vec<D>& xi = pts.position[i];
+  for (Index j : nb.of(i)) {
+    const Vec<D> r = pts.position[j] - xi;
+    if (pts.kind[j] == PointKind::fluid) {
+      if (r.dot(dir) > r.norm() * cos_cone) return true;
+      continue;
+    }
+    const Vec<D>& n = pts.wall_normal[j];
+    const double facing = dir.dot(n);
+    if (facing >= -cos_cone) continue;   // the direction does not point into that wall
+    const double s = r.dot(n) / facing;  // distance along dir to the wall's plane
+    if (s > -1e-9 * nb.radius && s < nb.radius) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+template <int D>
+double lattice_number_density(double dx, double h) {
+  const int m = static_cast<int>(std::ceil(h / dx));
+  double n0 = 0.0;
+  Eigen::Matrix<int, D, 1> k = Eigen::Matrix<int, D, 1>::Constant(-m);
+  while (true) {
+    const double r = k.template cast<double>().norm() * dx;
+    if (r > 0.0) n0 += wendland_c2(r / h);
+    int a = 0;
+    while (a < D && ++k[a] > m) k[a++] = -m;
+    if (a == D) break;
+  }
+  return n0;
+}
+
+/// The outward normal ν with its components into the walls next to point i removed: a fluid
+/// deficit towards a wall is the wall, not a free surface (two passes, for corners).
+template <int D>
+Vec<D> off_the_walls(const PointSet<D>& pts, const Neighbours& nb, Index i, Vec<D> nu) {
+  for (int pass = 0; pass < 2; ++pass)
+    for (Index j : nb.of(i)) {
+      if (pts.kind[j] != PointKind::wall) continue;
+      const double into = nu.dot(pts.wall_normal[j]);
+      if (into < 0.0) nu -= into * pts.wall_normal[j];
+    }
+  return nu;
+}
+
+/// Number density, offset vector and Σ W|r| over the FLUID neighbours of i only: wall nodes stand
+/// for the wall, not for fluid, and dry nodes above a free surface would otherwise turn the
+/// offset of the surface points near a wall downwards.
+template <int D>
+struct FluidMoments {
+  double density = 0.0, moment = 0.0;
+  Vec<D> offset = Vec<D>::Zero();
+};
+
+template <int D>
+FluidMoments<D> fluid_moments(const PointSet<D>& pts, const Neighbours& nb, Index i) {
+  FluidMoments<D> m;
+  for (Index j : nb.of(i)) {
+    if (pts.kind[j] != PointKind::fluid) continue;
+    const Vec<D> r = pts.position[j] - pts.position[i];
+    const double d = r.norm(), w = wendland_c2(d / nb.radius);
+    m.density += w;
+    m.moment += w * d;
+    m.offset += w * r;
+  }
+  return m;
+}
+
+template <int D>
+FreeSurfaceReport detect_free_surface(PointSet<D>& pts, const Neighbours& nb,
+                                      const Operators<D>& ops, const FreeSurfaceOptions& opt) {
+  HM_ASSERT(opt.reference_density > 0.0, "free surface: reference number density {} must be > 0",
+            opt.reference_density);
+  const double cos_cone = std::cos(opt.cone_degrees * std::numbers::pi / 180.0);
+  const double cos_wall_cone = std::cos(opt.wall_cone_degrees * std::numbers::pi / 180.0);
+  const Index n = pts.size();
+  FreeSurfaceReport rep;
+  Index candidates = 0, surface = 0, contact = 0, isolated = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : candidates, surface, contact, isolated)
+  for (Index i = 0; i < n; ++i) {
+    const PointType before = pts.type[i];
+    if (before == PointType::inactive) continue;
+    const auto m = fluid_moments<D>(pts, nb, i);
+    const double on = m.offset.norm();
+    if (pts.kind[i] == PointKind::wall) {
+      PointType t = PointType::wall;
+      if (on > 0.0) {
+        const Vec<D>& nw = pts.wall_normal[i];
+        const Vec<D> nu = -m.offset / on;
+        const Vec<D> tangent = nu - nu.dot(nw) * nw;
+        if (tangent.norm() >= opt.min_wall_tangent &&
+            !cone_covered<D>(pts, nb, i, tangent.normalized(), cos_wall_cone)) {
+          t = PointType::surface;
+          ++contact;
+        }
+      }
+      pts.type[i] = t;
+      continue;
+    }
+    if (ops.isolated(i)) {
+      pts.type[i] = PointType::isolated;
+      ++isolated;
+      continue;
+    }
+    const bool was = before == PointType::surface;
+    const double beta = was ? 1.0 - opt.hysteresis * (1.0 - opt.beta_n) : opt.beta_n;
+    const double tau = was ? opt.hysteresis * opt.tau_o : opt.tau_o;
+    const double ratio = m.moment > 0.0 ? on / m.moment : 1.0;
+    const bool candidate =
+        m.density < beta * opt.reference_density || ratio > tau || ops.lambda_min[i] < opt.lambda_c;
+    PointType t = PointType::interior;
+    if (candidate) {
+      ++candidates;
+      // A degenerate stencil with a vanishing offset (a symmetric filament) is a surface too.
+      bool open = ops.lambda_min[i] < opt.lambda_c;
+      if (on > 0.0) {
+        const Vec<D> nu = off_the_walls<D>(pts, nb, i, -m.offset / on);
+        open = nu.norm() >= opt.min_wall_tangent &&
+               !cone_covered<D>(pts, nb, i, nu.normalized(), cos_cone);
+      }
+      if (open) {
+        t = PointType::surface;
+        ++surface;
+      }
+    }
+    pts.type[i] = t;
+  }
+  rep.candidates = candidates;
+  rep.surface = surface;
+  rep.contact_line = contact;
+  rep.isolated = isolated;
+  return rep;
+}
+
+template double lattice_number_density<2>(double, double);
+template double lattice_number_density<3>(double, double);
+template FreeSurfaceReport detect_free_surface<2>(PointSet<2>&, const Neighbours&,
+                                                  const Operators<2>&, const FreeSurfaceOptions&);
+template FreeSurfaceReport detect_free_surface<3>(PointSet<3>&, const Neighbours&,
+                                                  const Operators<3>&, const FreeSurfaceOptions&);
+
+}  // namespace hm::ldd

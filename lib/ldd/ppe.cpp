@@ -1,0 +1,218 @@
+#include "ldd/ppe.hpp"
+
+#include <cmath>
+#include <numeric>
+
+#include <Eigen/IterativeLinearSolvers>
+
+#include "core/errors.hpp"
+
+namespace hm::ldd {
+namespace {
+
+bool dirichlet_type(PointType t) {
+  return t == PointType::surface || t == PointType::isolated;
+}
+
+/// Neumann row of wall node i: coefficients n·g_ij into c, returns the diagonal −Σ n·g_ij.
+template <int D>
+double neumann_row(const PointSet<D>& pts, const Neighbours& nb, const Operators<D>& ops, Index i,
+                   double* c) {
+  double diagonal = 0.0;
+  std::size_t k = 0;
+  for (Index j : nb.of(i)) {
+    const double v =
+        pts.wall_normal[i].dot(gradient_weight<D>(ops, i, pts.position[j] - pts.position[i]));
+    c[k++] = v;
+    diagonal -= v;
+  }
+  return diagonal;
+}
+
+}  // namespace
+
+template <int D>
+PoissonSystem assemble_poisson(PointSet<D>& pts, const Neighbours& nb, const Operators<D>& ops,
+                               const PoissonData& data, double dx) {
+  const Index n = pts.size();
+  HM_ASSERT(dx > 0.0, "assemble_poisson: dx {} must be > 0", dx);
+  PoissonSystem sys;
+  // Neumann rows without a usable diagonal become Dirichlet (§0.2 item 5).
+  std::vector<double> coeff(nb.indices.size());
+  Index weak = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : weak)
+  for (Index i = 0; i < n; ++i) {
+    if (pts.type[i] != PointType::wall) continue;
+    const double diag = neumann_row<D>(pts, nb, ops, i, coeff.data() + nb.offsets[i]);
+    if (ops.isolated(i) || std::abs(diag) < 0.2 / dx) {
+      pts.type[i] = PointType::surface;
+      ++weak;
+    }
+  }
+  sys.weak_neumann = weak;
+  sys.unknown_of.assign(static_cast<std::size_t>(n), -1);
+  sys.dirichlet.assign(static_cast<std::size_t>(n), 0.0);
+  for (Index i = 0; i < n; ++i) {
+    if (dirichlet_type(pts.type[i])) {
+      sys.dirichlet[i] = data.dirichlet.empty() ? 0.0 : data.dirichlet[i];
+    } else if (pts.type[i] != PointType::inactive) {
+      sys.unknown_of[i] = static_cast<Index>(sys.point_of.size());
+      sys.point_of.push_back(i);
+    }
+  }
+  const auto m = static_cast<Index>(sys.point_of.size());
+  // Row sizes: unknown neighbours + the diagonal.
+  std::vector<int> outer(static_cast<std::size_t>(m) + 1, 0);
+  bool any_dirichlet = false;
+#pragma omp parallel for schedule(static) reduction(|| : any_dirichlet)
+  for (Index r = 0; r < m; ++r) {
+    int c = 1;
+    for (Index j : nb.of(sys.point_of[r])) {
+      if (sys.unknown_of[j] >= 0)
+        ++c;
+      else
+        any_dirichlet = true;
+    }
+    outer[static_cast<std::size_t>(r) + 1] = c;
+  }
+  std::partial_sum(outer.begin(), outer.end(), outer.begin());
+  auto& A = sys.matrix;
+  A.resize(m, m);
+  A.resizeNonZeros(outer.back());
+  std::copy(outer.begin(), outer.end(), A.outerIndexPtr());
+  sys.rhs.resize(m);
+  std::vector<double> known(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) known[i] = sys.dirichlet[i];
+#pragma omp parallel for schedule(dynamic, 256)
+  for (Index r = 0; r < m; ++r) {
+    const Index i = sys.point_of[r];
+    const bool wall = pts.type[i] == PointType::wall;
+    const double* c = wall ? coeff.data() + nb.offsets[i] : ops.laplacian.data() + nb.offsets[i];
+    double diag = 0.0, rhs = wall ? data.neumann[i] : data.source[i];
+    for (std::size_t k = 0; k < static_cast<std::size_t>(nb.count(i)); ++k) diag -= c[k];
+    int* col = A.innerIndexPtr() + outer[r];
+    double* val = A.valuePtr() + outer[r];
+    bool diagonal_written = false;
+    auto put_diagonal = [&] {
+      *col++ = r;
+      *val++ = 1.0;
+      diagonal_written = true;
+    };
+    const auto nbr = nb.of(i);
+    for (std::size_t k = 0; k < nbr.size(); ++k) {
+      const Index j = nbr[k], u = sys.unknown_of[j];
+      if (u < 0) {
+        rhs -= c[k] * known[j];
+        continue;
+      }
+      if (!diagonal_written && u > r) put_diagonal();
+      *col++ = u;
+      *val++ = c[k] / diag;
+    }
+    if (!diagonal_written) put_diagonal();
+    sys.rhs[r] = rhs / diag;
+  }
+  if (!any_dirichlet) {
+    // Closed system: pin the first interior point (its row becomes p = 0).
+    for (Index r = 0; r < m && sys.pinned < 0; ++r) {
+      if (pts.type[sys.point_of[r]] != PointType::interior) continue;
+      sys.pinned = sys.point_of[r];
+      for (int k = outer[r]; k < outer[r + 1]; ++k)
+        A.valuePtr()[k] = A.innerIndexPtr()[k] == r ? 1.0 : 0.0;
+      sys.rhs[r] = 0.0;
+    }
+  }
+  return sys;
+}
+
+SolveReport solve_poisson(const PoissonSystem& sys, std::vector<double>& pressure,
+                          const SolverOptions& opt) {
+  using Matrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+  const auto m = static_cast<Index>(sys.point_of.size());
+  HM_ASSERT(pressure.size() == sys.unknown_of.size(), "pressure has {} values for {} points",
+            pressure.size(), sys.unknown_of.size());
+  SolveReport rep;
+  rep.unknowns = m;
+  rep.nonzeros = sys.matrix.nonZeros();
+  Eigen::VectorXd guess(m);
+  for (Index r = 0; r < m; ++r) guess[r] = pressure[sys.point_of[r]];
+  Eigen::VectorXd x;
+  auto run = [&](auto& solver) {
+    solver.setTolerance(opt.tolerance);
+    solver.setMaxIterations(opt.max_iterations);
+    solver.compute(sys.matrix);
+    if (solver.info() != Eigen::Success) {
+      rep.converged = false;
+      return;
+    }
+    x = solver.solveWithGuess(sys.rhs, guess);
+    rep.iterations = static_cast<int>(solver.iterations());
+    rep.residual = solver.error();
+    rep.converged = solver.info() == Eigen::Success && x.allFinite();
+  };
+  if (m > 0) {
+    if (opt.preconditioner == Preconditioner::ilu) {
+      Eigen::BiCGSTAB<Matrix, Eigen::IncompleteLUT<double, int>> solver;
+      solver.preconditioner().setDroptol(opt.ilu_drop);
+      solver.preconditioner().setFillfactor(opt.ilu_fill);
+      run(solver);
+    } else {
+      Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
+      run(solver);
+    }
+  } else {
+    rep.converged = true;
+  }
+  for (std::size_t i = 0; i < pressure.size(); ++i)
+    pressure[i] = sys.unknown_of[i] >= 0 ? (x.size() == m ? x[sys.unknown_of[i]] : pressure[i])
+                                         : sys.dirichlet[i];
+  return rep;
+}
+
+template <int D>
+PoissonData ppe_data(const PointSet<D>& pts, const Neighbours& nb, const Operators<D>& ops,
+                     std::span<const Vec<D>> predicted, std::span<const Vec<D>> viscous,
+                     const PpeOptions<D>& opt) {
+  HM_ASSERT(opt.dt > 0.0 && opt.dx > 0.0, "ppe: dt {} and dx {} must be > 0", opt.dt, opt.dx);
+  const Index n = pts.size();
+  PoissonData d;
+  d.source = divergence<D>(pts.position, nb, ops, predicted);
+  d.neumann.assign(static_cast<std::size_t>(n), 0.0);
+  d.dirichlet.assign(static_cast<std::size_t>(n), 0.0);
+  const double rho = opt.density;
+  const bool volume = opt.volume_relaxation > 0.0 && opt.reference_density > 0.0;
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    d.source[i] *= rho / opt.dt;
+    if (pts.kind[i] == PointKind::wall) {
+      Vec<D> a = opt.gravity - pts.wall_acceleration[i];
+      if (!viscous.empty()) a += viscous[i];
+      d.neumann[i] = rho * pts.wall_normal[i].dot(a);
+      continue;
+    }
+    if (!volume) continue;
+    bool full = true;  // no wall node within 2 dx, no Dirichlet neighbour
+    for (Index j : nb.of(i)) {
+      const bool near_wall = pts.kind[j] == PointKind::wall &&
+                             (pts.position[j] - pts.position[i]).norm() < 2.0 * opt.dx;
+      full = full && !near_wall && !dirichlet_type(pts.type[j]);
+    }
+    if (full)
+      d.source[i] -= opt.volume_relaxation * rho / (opt.dt * opt.dt) *
+                     (ops.number_density[i] - opt.reference_density) / opt.reference_density;
+  }
+  return d;
+}
+
+template PoissonSystem assemble_poisson<2>(PointSet<2>&, const Neighbours&, const Operators<2>&,
+                                           const PoissonData&, double);
+template PoissonSystem assemble_poisson<3>(PointSet<3>&, const Neighbours&, const Operators<3>&,
+                                           const PoissonData&, double);
+template PoissonData ppe_data<2>(const PointSet<2>&, const Neighbours&, const Operators<2>&,
+                                 std::span<const Vec<2>>, std::span<const Vec<2>>,
+                                 const PpeOptions<2>&);
+template PoissonData ppe_data<3>(const PointSet<3>&, const Neighbours&, const Operators<3>&,
+                                 std::span<const Vec<3>>, std::span<const Vec<3>>,
+                                 const PpeOptions<3>&);
+
+}  // namespace hm::ldd

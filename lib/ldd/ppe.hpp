@@ -1,0 +1,85 @@
+#pragma once
+// The pressure Poisson equation (spec §1.9), in two layers:
+//  * a generic Poisson problem on the point cloud: interior rows Σ c_ij (p_j − p_i) = s_i
+//    (Laplacian of eq. 7 / WLS), Neumann rows at wall nodes Σ (n_i·g_ij)(p_j − p_i) = q_i
+//    (renormalised gradient eq. 6 along the wall normal), Dirichlet values at SURFACE and
+//    ISOLATED points, eliminated to the right-hand side; every row scaled by its diagonal
+//    (Neumann rows scale like 1/dx, interior rows like 1/dx²: D3). A system with no Dirichlet
+//    value (a closed box) is singular: one interior point is pinned to p = 0.
+//  * the PPE sources of the projection: s_i = (ρ/Δt) ∇·u*_i − α (ρ/Δt²)(n_i − n_0)/n_0 (the
+//    volume term only at full-stencil points), q_i = ρ n_i·(g + ν∇²u − A^w)_i.
+// Solved with BiCGSTAB (Eigen) and a Jacobi or ILU (IncompleteLUT) preconditioner, warm-started
+// from the previous pressure; iterations and residual are returned, not thrown.
+#include <span>
+#include <vector>
+
+#include <Eigen/SparseCore>
+
+#include "ldd/operators.hpp"
+
+namespace hm::ldd {
+
+/// Right-hand sides of a Poisson problem, one value per point (the one its type uses).
+struct PoissonData {
+  std::vector<double> source;     ///< interior points: ∇²p [Pa/m²]
+  std::vector<double> neumann;    ///< wall nodes: n·∇p [Pa/m]
+  std::vector<double> dirichlet;  ///< surface / isolated points: p [Pa]
+};
+
+struct PoissonSystem {
+  Eigen::SparseMatrix<double, Eigen::RowMajor, int> matrix;  ///< row-scaled (unit diagonal)
+  Eigen::VectorXd rhs;
+  std::vector<Index> unknown_of;  ///< point → unknown, −1 for Dirichlet / inactive points
+  std::vector<Index> point_of;    ///< unknown → point
+  std::vector<double> dirichlet;  ///< per point, the value used where unknown_of is −1
+  Index pinned = -1;              ///< point pinned to p = 0 (closed system), else −1
+  Index weak_neumann = 0;         ///< wall rows turned Dirichlet (|Σ n·g_ij| < 0.2/dx)
+};
+
+/// Assembles the Poisson problem. Wall rows with |Σ_j n_i·g_ij| < 0.2/dx (one-point films, jet
+/// tips) have no usable diagonal: they become SURFACE with p = 0 (points.type changes).
+template <int D>
+PoissonSystem assemble_poisson(PointSet<D>& points, const Neighbours& neighbours,
+                               const Operators<D>& ops, const PoissonData& data, double dx);
+
+enum class Preconditioner : std::uint8_t { jacobi, ilu };
+
+struct SolverOptions {
+  Preconditioner preconditioner = Preconditioner::ilu;
+  double tolerance = 1e-6;  ///< relative residual of the scaled system
+  int max_iterations = 1000;
+  double ilu_drop = 1e-4;  ///< IncompleteLUT drop tolerance
+  int ilu_fill = 2;        ///< IncompleteLUT fill factor
+};
+
+struct SolveReport {
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;  ///< relative residual of the scaled system
+  Index unknowns = 0;
+  std::int64_t nonzeros = 0;
+};
+
+/// Solves the system; `pressure` (one value per point) is the warm start and receives the
+/// solution, with the Dirichlet values at Dirichlet points and 0 at inactive ones.
+SolveReport solve_poisson(const PoissonSystem& system, std::vector<double>& pressure,
+                          const SolverOptions& options = {});
+
+template <int D>
+struct PpeOptions {
+  double density = 1000.0;          ///< ρ [kg/m³]
+  Vec<D> gravity = Vec<D>::Zero();  ///< g [m/s²]
+  double dt = 0.0;                  ///< Δt [s], > 0
+  double dx = 0.0;                  ///< initial spacing [m]
+  double volume_relaxation = 0.05;  ///< α of §0.2 item 5 (0 disables)
+  double reference_density = 0.0;   ///< n_0 (0 disables the volume term)
+};
+
+/// Sources of the PPE. predicted: u* per point (wall nodes: U + Δt(g + ν∇²u), not U: D1);
+/// viscous: ν∇²u per point [m/s²] (may be empty = 0). Dirichlet values are p_atm = 0.
+template <int D>
+PoissonData ppe_data(const PointSet<D>& points, const Neighbours& neighbours,
+                     const Operators<D>& ops, std::span<const Vec<D>> predicted,
+                     std::span<const Vec<D>> viscous, const PpeOptions<D>& options);
+
+}  // namespace hm::ldd

@@ -1,0 +1,99 @@
+#pragma once
+// Walls as surface meshes (spec §1.5): segments in 2-D, triangles in 3-D, normals into the fluid
+// (mesh::SurfaceMesh convention: triangle (a,b,c) → (b−a)×(c−a); segment (a,b) → ẑ×(b−a)).
+// An AABB tree (own, median split, refit in O(n) when the mesh moves) answers closest point,
+// signed distance (sign from the angle-weighted pseudo-normal of the closest feature: face, edge
+// or vertex; positive on the fluid side) and segment crossing. Wall nodes (CHOICE-B, §0.2) are
+// sampled on the elements at spacing ≤ dx and follow the mesh through their barycentrics.
+#include <array>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "ldd/neighbours.hpp"
+#include "mesh/types.hpp"
+
+namespace hm::ldd {
+
+template <int D>
+struct ClosestPoint {
+  Vec<D> point = Vec<D>::Zero();        ///< closest point on the wall [m]
+  Index element = -1;                   ///< element holding it
+  Vec<D> barycentric = Vec<D>::Zero();  ///< in that element (exact zeros on edges/vertices)
+  double signed_distance = 0.0;         ///< [m], > 0 on the fluid side
+  Vec<D> normal = Vec<D>::Zero();       ///< pseudo-normal of the closest feature, unit
+};
+
+template <int D>
+class WallMesh {
+ public:
+  /// `name` appears in error messages. A `thin` wall (baffle, gate) is wetted on both sides:
+  /// neighbour pairs crossing it are cut and its nodes are sampled on both sides.
+  WallMesh(const mesh::SurfaceMesh& surface, std::string name, bool thin = false);
+  ~WallMesh();
+  WallMesh(WallMesh&&) noexcept;
+  WallMesh& operator=(WallMesh&&) noexcept;
+
+  const std::string& name() const { return name_; }
+  bool thin() const { return thin_; }
+  Index element_count() const { return static_cast<Index>(cells_.size()); }
+  const std::vector<Vec<D>>& vertices() const { return x_; }
+  const std::array<Index, D>& element(Index e) const { return cells_[e]; }
+  Vec<D> lower() const;  ///< bounding box [m]
+  Vec<D> upper() const;
+
+  /// New vertex positions [m], velocities [m/s] and accelerations [m/s²] (same count and order
+  /// as the vertices; velocity/acceleration may be empty = zero); refits the tree.
+  void move(std::span<const Vec<D>> x, std::span<const Vec<D>> v = {},
+            std::span<const Vec<D>> a = {});
+
+  Vec<D> point_at(Index e, const Vec<D>& barycentric) const;
+  Vec<D> velocity_at(Index e, const Vec<D>& barycentric) const;
+  Vec<D> acceleration_at(Index e, const Vec<D>& barycentric) const;
+  /// Unit normal at a point of element e: the element's, or the pseudo-normal of the edge or
+  /// vertex when barycentric coordinates are exactly zero.
+  Vec<D> normal_at(Index e, const Vec<D>& barycentric) const;
+
+  ClosestPoint<D> closest(const Vec<D>& x) const;
+  /// Whether the open segment a→b crosses an element (touching at an end does not count).
+  bool crosses(const Vec<D>& a, const Vec<D>& b) const;
+
+  /// Open boundary of the mesh: edges used by one triangle (3-D) or vertices used by one
+  /// segment (2-D), plus non-manifold ones. 0 for a closed surface.
+  Index open_boundary_count() const;
+  /// Throws InputError naming the wall, `purpose`, the count and a location of the first gap.
+  void require_closed(std::string_view purpose) const;
+
+ private:
+  struct Tree;
+  void compute_normals();
+  std::string name_;
+  bool thin_ = false;
+  std::vector<Vec<D>> x_, v_, a_;
+  std::vector<std::array<Index, D>> cells_;
+  std::vector<Vec<D>> face_normal_, vertex_normal_;
+  std::vector<std::pair<std::uint64_t, Vec<D>>> edge_normal_;  // 3-D: sorted by edge key
+  std::unique_ptr<Tree> tree_;
+};
+
+/// Samples wall nodes on every element of `wall` at spacing ≤ dx [m] (vertices and shared edges
+/// once) and appends them to `points` with body index `body`; a thin wall gets a second set with
+/// the opposite normal. Sets their velocity and acceleration from the wall. Returns the count.
+template <int D>
+Index add_wall_nodes(PointSet<D>& points, const WallMesh<D>& wall, int body, double dx);
+
+/// Moves every wall node to its host element's current position and sets its normal, velocity
+/// and acceleration (walls[body] is the node's wall).
+template <int D>
+void update_wall_nodes(PointSet<D>& points, std::span<const WallMesh<D>> walls);
+
+/// Cuts neighbour pairs through thin walls (§1.5): pairs whose segment crosses a thin wall,
+/// tested only when both points are within h of it, and pairs from a thin wall's node to a point
+/// behind it (r_ij·n_i < 0). Returns the number of directed pairs removed.
+template <int D>
+std::int64_t cut_pairs_through_thin_walls(Neighbours& neighbours, const PointSet<D>& points,
+                                          std::span<const WallMesh<D>> walls);
+
+}  // namespace hm::ldd
