@@ -69,4 +69,21 @@ int run_stage(int argc, char** argv, const StageInfo& info,
   }
 }
 
+int run_scene_stage(int argc, char** argv, const StageInfo& info, const SceneStage& stage) {
+  return run_stage(argc, argv, info, [&](const StageArgs& args) {
+    const io::Scene scene = io::Scene::load(args.positional);
+    spdlog::info("{}: resolved parameters of {}:\n{}", info.name, args.positional,
+                 scene.parameters_for(info.name));
+    if (args.validate) {
+      stage.validate(scene);
+      spdlog::info("{}: {} is valid for this stage", info.name, args.positional);
+      return;
+    }
+    if (args.output.empty()) throw UsageError(info.name + ": -o/--output FILE is required");
+    for (const auto& [name, path] : args.inputs)
+      if (path.empty()) throw UsageError(fmt::format("{}: --{} FILE is required", info.name, name));
+    stage.run(scene, args.inputs, args.output);
+  });
+}
+
 }  // namespace hm::stages

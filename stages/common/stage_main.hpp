@@ -10,6 +10,7 @@
 
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "io/scene.hpp"
 
 namespace hm::stages {
 
@@ -36,5 +37,18 @@ struct StageArgs {
 
 int run_stage(int argc, char** argv, const StageInfo& info,
               const std::function<void(const StageArgs&)>& body);
+
+/// What a scene-driven stage does: check the scene for itself, and run.
+struct SceneStage {
+  std::function<void(const io::Scene&)> validate;
+  /// Inputs (by option name) and the output path are present when this is called.
+  std::function<void(const io::Scene&, const std::map<std::string, std::string>& inputs,
+                     const std::string& output)>
+      run;
+};
+
+/// The common shape of fsi-mesh, fsi-modes, fsi-map, ...: load the scene, echo the resolved
+/// parameters of this stage, then --validate or run (every --<input> and -o required).
+int run_scene_stage(int argc, char** argv, const StageInfo& info, const SceneStage& stage);
 
 }  // namespace hm::stages

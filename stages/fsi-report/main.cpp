@@ -1,7 +1,6 @@
-// fsi-report — Plot probes against reference data and tabulate errors. The stage is not available
-// in this version: its command line and scene validation exist so pipelines and scripts can be
-// written against them.
-#include "io/scene.hpp"
+// fsi-report — Plot probes against reference data and tabulate errors. Not available in this
+// version: its command line and scene validation exist so that pipelines and scripts can be written
+// against them.
 #include "stage_main.hpp"
 
 int main(int argc, char** argv) {
@@ -11,12 +10,11 @@ int main(int argc, char** argv) {
           "Plot probes against reference data and tabulate errors (not available in this version).",
       .inputs = {{"results", "results artefact written by fsi-simulate"}},
   };
-  return hm::stages::run_stage(argc, argv, info, [](const hm::stages::StageArgs& args) {
-    const hm::io::Scene scene = hm::io::Scene::load(args.positional);
-    if (args.validate) {
-      spdlog::info("fsi-report: {} is a valid scene", args.positional);
-      return;
-    }
-    throw hm::UsageError("fsi-report is not available in this version of hydromodal");
-  });
+  return hm::stages::run_scene_stage(
+      argc, argv, info,
+      {.validate = [](const hm::io::Scene&) {},
+       .run =
+           [](const hm::io::Scene&, const auto&, const std::string&) {
+             throw hm::UsageError("fsi-report is not available in this version of hydromodal");
+           }});
 }

@@ -1,7 +1,6 @@
-// fsi-simulate — Run the coupled LDD flow + modal structure simulation. The stage is not available
-// in this version: its command line and scene validation exist so pipelines and scripts can be
-// written against them.
-#include "io/scene.hpp"
+// fsi-simulate — Run the coupled LDD flow + modal structure simulation. Not available in this
+// version: its command line and scene validation exist so that pipelines and scripts can be written
+// against them.
 #include "stage_main.hpp"
 
 int main(int argc, char** argv) {
@@ -11,12 +10,11 @@ int main(int argc, char** argv) {
           "Run the coupled LDD flow + modal structure simulation (not available in this version).",
       .inputs = {{"mapped", "mapped-modes artefact written by fsi-map"}},
   };
-  return hm::stages::run_stage(argc, argv, info, [](const hm::stages::StageArgs& args) {
-    const hm::io::Scene scene = hm::io::Scene::load(args.positional);
-    if (args.validate) {
-      spdlog::info("fsi-simulate: {} is a valid scene", args.positional);
-      return;
-    }
-    throw hm::UsageError("fsi-simulate is not available in this version of hydromodal");
-  });
+  return hm::stages::run_scene_stage(
+      argc, argv, info,
+      {.validate = [](const hm::io::Scene&) {},
+       .run =
+           [](const hm::io::Scene&, const auto&, const std::string&) {
+             throw hm::UsageError("fsi-simulate is not available in this version of hydromodal");
+           }});
 }
