@@ -34,6 +34,9 @@ struct StructureMesh {
 };
 
 /// A wall or wetted surface as the fluid sees it: segments (2-D) or triangles (3-D), linear.
+/// Normals: a triangle (a, b, c) has normal (b − a) × (c − a); a 2-D segment (a, b) has normal
+/// ẑ × (b − a), i.e. its left side. Fluid walls point into the fluid; the boundary surface of a
+/// structure points out of the structure (which is again into the fluid around it).
 struct SurfaceMesh {
   int dim = 3;             ///< 2: cells are segments (2 vertices); 3: triangles (3 vertices)
   Coordinates vertices;    ///< n_vertices × dim [m]
