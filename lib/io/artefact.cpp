@@ -511,6 +511,45 @@ std::optional<double> ArtefactReader::number_attribute(const std::string& name) 
   return read_number_attribute(file_->get(), name);
 }
 
+// ---- staleness ---------------------------------------------------------------------------------
+
+Provenance read_artefact_provenance(const std::filesystem::path& path) {
+  const auto file = open_artefact_file(path);
+  return read_provenance(file->get(), path);
+}
+
+std::string staleness(const std::filesystem::path& output, const std::string& stage,
+                      const std::string& parameters,
+                      const std::map<std::string, std::string>& inputs) {
+  if (!std::filesystem::exists(output)) return "it does not exist";
+  Provenance p;
+  try {
+    p = read_artefact_provenance(output);
+  } catch (const InputError& e) {
+    return fmt::format("it is not a readable artefact ({})", e.what());
+  }
+  if (p.stage != stage) return fmt::format("it was written by {}, not {}", p.stage, stage);
+  if (p.status != "ok") return fmt::format("its status is '{}'", p.status);
+  if (p.tool_version != tool_version())
+    return fmt::format("the tool changed ({} → {})", p.tool_version, tool_version());
+  if (p.parameters_sha256 != sha256_text(parameters)) return "the scene parameters changed";
+  for (const auto& [role, path] : inputs) {
+    const auto recorded = std::find_if(p.inputs.begin(), p.inputs.end(),
+                                       [&](const InputRecord& r) { return r.role == role; });
+    if (recorded == p.inputs.end() || recorded->path != path)
+      return fmt::format("input '{}' is now '{}'", role, path);
+  }
+  for (const auto& input : p.inputs) {
+    if (input.role == "scene") continue;
+    std::error_code ec;
+    if (!std::filesystem::exists(input.path, ec))
+      return fmt::format("input '{}' is gone", input.path);
+    if (sha256_file(input.path) != input.sha256)
+      return fmt::format("the content of input '{}' ({}) changed", input.role, input.path);
+  }
+  return "";
+}
+
 // ---- summary ------------------------------------------------------------------------------------
 
 ArtefactSummary summarise(const std::filesystem::path& path, std::size_t max_values) {

@@ -133,6 +133,19 @@ struct ArtefactSummary {
 /// is missing, not HDF5, truncated, has no schema attribute or fails its schema's checks.
 ArtefactSummary summarise(const std::filesystem::path& path, std::size_t max_values = 1000);
 
+/// The provenance of any artefact (no schema checks); InputError when it is not one.
+Provenance read_artefact_provenance(const std::filesystem::path& path);
+
+/// Why `output` would not be what a stage run now would write: "" when it is up to date, else
+/// the reason. Up to date means: it is an artefact of `stage`, written by this tool version, with
+/// the same canonical parameters, and every recorded input (except the scene file itself, whose
+/// relevant content the parameters already capture) still has the recorded SHA-256 content hash;
+/// `inputs` (role → path, e.g. "mesh" → mesh.h5) must be the recorded paths. File timestamps play
+/// no part: touching an input changes nothing, editing one byte does.
+std::string staleness(const std::filesystem::path& output, const std::string& stage,
+                      const std::string& parameters,
+                      const std::map<std::string, std::string>& inputs);
+
 /// UTC now as ISO 8601 ("2026-11-22T01:48:28Z").
 std::string utc_now_iso8601();
 

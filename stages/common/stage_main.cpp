@@ -6,6 +6,7 @@
 
 #include "core/errors.hpp"
 #include "core/version.hpp"
+#include "io/artefact.hpp"
 #include "io/atomic_file.hpp"
 #include "io/scene.hpp"
 
@@ -69,7 +70,12 @@ int run_stage(int argc, char** argv, const StageInfo& info,
   }
 }
 
-int run_scene_stage(int argc, char** argv, const StageInfo& info, const SceneStage& stage) {
+int run_scene_stage(int argc, char** argv, const StageInfo& scene_info, const SceneStage& stage) {
+  StageInfo info = scene_info;
+  info.flags.emplace_back("if-stale",
+                          "run only if the output is missing or stale: written by another tool "
+                          "version, with other scene parameters, or from inputs whose content "
+                          "changed (content hashes decide, not timestamps)");
   return run_stage(argc, argv, info, [&](const StageArgs& args) {
     const io::Scene scene = io::Scene::load(args.positional);
     spdlog::info("{}: resolved parameters of {}:\n{}", info.name, args.positional,
@@ -82,6 +88,15 @@ int run_scene_stage(int argc, char** argv, const StageInfo& info, const SceneSta
     if (args.output.empty()) throw UsageError(info.name + ": -o/--output FILE is required");
     for (const auto& [name, path] : args.inputs)
       if (path.empty()) throw UsageError(fmt::format("{}: --{} FILE is required", info.name, name));
+    if (args.flags.at("if-stale")) {
+      const std::string reason =
+          io::staleness(args.output, info.name, scene.parameters_for(info.name), args.inputs);
+      if (reason.empty()) {
+        spdlog::info("{}: {} is up to date", info.name, args.output);
+        return;
+      }
+      spdlog::info("{}: (re)making {}: {}", info.name, args.output, reason);
+    }
     stage.run(scene, args.inputs, args.output);
   });
 }
