@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include "core/errors.hpp"
 
@@ -81,6 +82,47 @@ FluidMoments<D> fluid_moments(const PointSet<D>& pts, const Neighbours& nb, Inde
   return m;
 }
 
+/// Item 4: wall node i lies beyond the fluid along the wall — the outward direction of its fluid
+/// neighbours (offset `offset`), projected on the wall tangent, has length ≥ min_wall_tangent
+/// and no neighbour covers the cone of half-angle acos(cos_wall_cone) around it.
+template <int D>
+bool beyond_the_fluid(const PointSet<D>& pts, const Neighbours& nb, Index i, const Vec<D>& offset,
+                      const FreeSurfaceOptions& opt, double cos_wall_cone) {
+  const double on = offset.norm();
+  if (on == 0.0) return false;
+  const Vec<D>& nw = pts.wall_normal[i];
+  const Vec<D> nu = -offset / on;
+  const Vec<D> tangent = nu - nu.dot(nw) * nw;
+  return tangent.norm() >= opt.min_wall_tangent &&
+         !cone_covered<D>(pts, nb, i, tangent.normalized(), cos_wall_cone);
+}
+
+template <int D>
+Index deactivate_wall_nodes_beyond_fluid(PointSet<D>& pts, Neighbours& nb,
+                                         const FreeSurfaceOptions& opt) {
+  const double cos_wall_cone = std::cos(opt.wall_cone_degrees * std::numbers::pi / 180.0);
+  const Index n = pts.size();
+  HM_ASSERT(nb.points() == n, "neighbour lists of {} points for {} points", nb.points(), n);
+  // Decide for every node first, then remove: the test reads fluid neighbours only (and wall
+  // nodes of other walls, which it does not change), so the order does not matter.
+  std::vector<char> dry(static_cast<std::size_t>(n), 0);
+  Index count = 0;
+#pragma omp parallel for schedule(dynamic, 256) reduction(+ : count)
+  for (Index i = 0; i < n; ++i) {
+    if (pts.kind[i] != PointKind::wall || pts.type[i] == PointType::inactive) continue;
+    const auto m = fluid_moments<D>(pts, nb, i);
+    if (beyond_the_fluid<D>(pts, nb, i, m.offset, opt, cos_wall_cone)) {
+      dry[i] = 1;
+      ++count;
+    }
+  }
+  if (count == 0) return 0;
+  for (Index i = 0; i < n; ++i)
+    if (dry[i]) pts.type[i] = PointType::inactive;
+  remove_pairs(nb, [&](Index i, Index j) { return dry[i] || dry[j]; });
+  return count;
+}
+
 template <int D>
 FreeSurfaceReport detect_free_surface(PointSet<D>& pts, const Neighbours& nb,
                                       const Operators<D>& ops, const FreeSurfaceOptions& opt) {
@@ -99,15 +141,9 @@ FreeSurfaceReport detect_free_surface(PointSet<D>& pts, const Neighbours& nb,
     const double on = m.offset.norm();
     if (pts.kind[i] == PointKind::wall) {
       PointType t = PointType::wall;
-      if (on > 0.0) {
-        const Vec<D>& nw = pts.wall_normal[i];
-        const Vec<D> nu = -m.offset / on;
-        const Vec<D> tangent = nu - nu.dot(nw) * nw;
-        if (tangent.norm() >= opt.min_wall_tangent &&
-            !cone_covered<D>(pts, nb, i, tangent.normalized(), cos_wall_cone)) {
-          t = PointType::surface;
-          ++contact;
-        }
+      if (beyond_the_fluid<D>(pts, nb, i, m.offset, opt, cos_wall_cone)) {
+        t = PointType::surface;
+        ++contact;
       }
       pts.type[i] = t;
       continue;
@@ -147,6 +183,10 @@ FreeSurfaceReport detect_free_surface(PointSet<D>& pts, const Neighbours& nb,
   return rep;
 }
 
+template Index deactivate_wall_nodes_beyond_fluid<2>(PointSet<2>&, Neighbours&,
+                                                     const FreeSurfaceOptions&);
+template Index deactivate_wall_nodes_beyond_fluid<3>(PointSet<3>&, Neighbours&,
+                                                     const FreeSurfaceOptions&);
 template double lattice_number_density<2>(double, double);
 template double lattice_number_density<3>(double, double);
 template FreeSurfaceReport detect_free_surface<2>(PointSet<2>&, const Neighbours&,

@@ -138,6 +138,8 @@ SolveReport solve_poisson(const PoissonSystem& sys, std::vector<double>& pressur
   for (Index r = 0; r < m; ++r) guess[r] = pressure[sys.point_of[r]];
   Eigen::VectorXd x;
   auto run = [&](auto& solver) {
+    rep.iterations = 0;
+    rep.residual = 0.0;
     solver.setTolerance(opt.tolerance);
     solver.setMaxIterations(opt.max_iterations);
     solver.compute(sys.matrix);
@@ -150,8 +152,9 @@ SolveReport solve_poisson(const PoissonSystem& sys, std::vector<double>& pressur
     rep.residual = solver.error();
     rep.converged = solver.info() == Eigen::Success && x.allFinite();
   };
-  if (m > 0) {
-    if (opt.preconditioner == Preconditioner::ilu) {
+  auto solve_with = [&](Preconditioner pre) {
+    rep.preconditioner = pre;
+    if (pre == Preconditioner::ilu) {
       Eigen::BiCGSTAB<Matrix, Eigen::IncompleteLUT<double, int>> solver;
       solver.preconditioner().setDroptol(opt.ilu_drop);
       solver.preconditioner().setFillfactor(opt.ilu_fill);
@@ -160,8 +163,20 @@ SolveReport solve_poisson(const PoissonSystem& sys, std::vector<double>& pressur
       Eigen::BiCGSTAB<Matrix, Eigen::DiagonalPreconditioner<double>> solver;
       run(solver);
     }
-  } else {
+  };
+  if (m == 0) {
     rep.converged = true;
+    rep.preconditioner =
+        opt.preconditioner == Preconditioner::ilu ? Preconditioner::ilu : Preconditioner::jacobi;
+  } else if (opt.preconditioner == Preconditioner::automatic) {
+    solve_with(Preconditioner::jacobi);
+    if (!rep.converged) {
+      rep.jacobi_iterations = rep.iterations;
+      x.resize(0);
+      solve_with(Preconditioner::ilu);
+    }
+  } else {
+    solve_with(opt.preconditioner);
   }
   for (std::size_t i = 0; i < pressure.size(); ++i)
     pressure[i] = sys.unknown_of[i] >= 0 ? (x.size() == m ? x[sys.unknown_of[i]] : pressure[i])

@@ -8,7 +8,8 @@
 //    value (a closed box) is singular: one interior point is pinned to p = 0.
 //  * the PPE sources of the projection: s_i = (ρ/Δt) ∇·u*_i − α (ρ/Δt²)(n_i − n_0)/n_0 (the
 //    volume term only at full-stencil points), q_i = ρ n_i·(g + ν∇²u − A^w)_i.
-// Solved with BiCGSTAB (Eigen) and a Jacobi or ILU (IncompleteLUT) preconditioner, warm-started
+// Solved with BiCGSTAB (Eigen) and a Jacobi or ILU (IncompleteLUT) preconditioner (by default
+// Jacobi with an ILU fallback, see Preconditioner), warm-started
 // from the previous pressure; iterations and residual are returned, not thrown.
 #include <span>
 #include <vector>
@@ -42,10 +43,18 @@ template <int D>
 PoissonSystem assemble_poisson(PointSet<D>& points, const Neighbours& neighbours,
                                const Operators<D>& ops, const PoissonData& data, double dx);
 
-enum class Preconditioner : std::uint8_t { jacobi, ilu };
+/// automatic: Jacobi, and ILU (IncompleteLUT) from the same warm start only if Jacobi does not
+/// converge within max_iterations. Measured on hydrostatic tanks (Release, cold start, tol 1e-6;
+/// tests/benchmarks/ldd BM_PpeIterations / BM_PpeSolve): Jacobi needs 5–10× more iterations but
+/// is faster at every size — 2-D 1.7k / 25k / 98k points: 1.9 / 116 / 872 ms against ILU
+/// 8.6 / 216 / 1398 ms; 3-D 9k / 53k / 240k points: 19 / 224 / 1271 ms against ILU
+/// 290 / 3420 / 21 506 ms. IncompleteLUT factorises serially and its cost grows with the row
+/// length (3-D rows hold ~60 entries). Eigen has no ILU(0), and IncompleteCholesky needs a
+/// symmetric matrix, which the Neumann rows are not.
+enum class Preconditioner : std::uint8_t { jacobi, ilu, automatic };
 
 struct SolverOptions {
-  Preconditioner preconditioner = Preconditioner::ilu;
+  Preconditioner preconditioner = Preconditioner::automatic;
   double tolerance = 1e-6;  ///< relative residual of the scaled system
   int max_iterations = 1000;
   double ilu_drop = 1e-4;  ///< IncompleteLUT drop tolerance
@@ -54,6 +63,10 @@ struct SolverOptions {
 
 struct SolveReport {
   bool converged = false;
+  /// The preconditioner of the returned solution (never automatic); automatic → ilu means
+  /// Jacobi did not converge and its iterations are not counted in `iterations`.
+  Preconditioner preconditioner = Preconditioner::jacobi;
+  int jacobi_iterations = 0;  ///< automatic: iterations spent in the Jacobi attempt
   int iterations = 0;
   double residual = 0.0;  ///< relative residual of the scaled system
   Index unknowns = 0;

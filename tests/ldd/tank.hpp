@@ -2,7 +2,9 @@
 // A water column at rest in a box tank whose walls are a surface mesh (lib/mesh wall mesher):
 // fluid lattice dx/2 from the walls, wall nodes on the walls (CHOICE-B), one PPE solve.
 // Shared by the tests and the benchmark.
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <random>
 #include <vector>
 
@@ -45,14 +47,17 @@ struct Column {
   double dx = 0, h = 0, n0 = 0;
 };
 
-/// Water of depth `depth` (last axis up) in a box tank `size`, gravity −9.81 along the last axis.
+/// Water of depth `depth` (last axis up) in the tank `tank` whose inside spans [0, size], gravity
+/// −9.81 along the last axis. `beyond`: deactivate the wall nodes beyond the fluid (above the
+/// surface) rather than make them Dirichlet p = 0.
 template <int D>
-Column<D> water_column(const Vec<D>& size, double depth, double dx, double wall_element,
-                       Preconditioner pre = Preconditioner::ilu, double jitter = 0.0) {
+Column<D> water_column_in(WallMesh<D> tank, const Vec<D>& size, double depth, double dx,
+                          Preconditioner pre = Preconditioner::automatic, double jitter = 0.0,
+                          bool beyond = true) {
   Column<D> c;
   c.dx = dx;
   c.h = 2.5 * dx;
-  c.walls.push_back(box_tank<D>(size, wall_element));
+  c.walls.push_back(std::move(tank));
   Box<D> fluid{Vec<D>::Zero(), size};
   fluid.upper[D - 1] = depth;
   auto x = seed_box<D>(fluid, dx, c.walls);
@@ -74,12 +79,13 @@ Column<D> water_column(const Vec<D>& size, double depth, double dx, double wall_
   };
   c.nb = find_neighbours<D>(c.points.position, c.h);
   deactivate_dry_wall_nodes<D>(c.points, c.nb);
-  lap(c.times.neighbours);
-  c.ops = compute_operators<D>(c.points.position, c.nb);
-  lap(c.times.operators);
   c.n0 = lattice_number_density<D>(dx, c.h);
   FreeSurfaceOptions fs;
   fs.reference_density = c.n0;
+  if (beyond) deactivate_wall_nodes_beyond_fluid<D>(c.points, c.nb, fs);
+  lap(c.times.neighbours);
+  c.ops = compute_operators<D>(c.points.position, c.nb);
+  lap(c.times.operators);
   c.surface = detect_free_surface<D>(c.points, c.nb, c.ops, fs);
   lap(c.times.free_surface);
   PpeOptions<D> po;
@@ -98,6 +104,32 @@ Column<D> water_column(const Vec<D>& size, double depth, double dx, double wall_
   c.report = solve_poisson(c.system, c.points.pressure, so);
   lap(c.times.solve);
   return c;
+}
+
+/// Water of depth `depth` (last axis up) in a box tank `size` meshed by lib/mesh.
+template <int D>
+Column<D> water_column(const Vec<D>& size, double depth, double dx, double wall_element,
+                       Preconditioner pre = Preconditioner::automatic, double jitter = 0.0,
+                       bool beyond = true) {
+  return water_column_in<D>(box_tank<D>(size, wall_element), size, depth, dx, pre, jitter, beyond);
+}
+
+/// Max |p − ρg(H − z)| / (ρgH) over fluid points below the top layer, H = height of the top layer.
+template <int D>
+double hydrostatic_error(const Column<D>& c, double* top_out = nullptr) {
+  double top = -1e300;
+  for (Index i = 0; i < c.points.size(); ++i)
+    if (c.points.kind[i] == PointKind::fluid) top = std::max(top, c.points.position[i][D - 1]);
+  const double rho_g = 1000.0 * 9.81;
+  double err = 0.0;
+  for (Index i = 0; i < c.points.size(); ++i) {
+    if (c.points.kind[i] != PointKind::fluid) continue;
+    const double z = c.points.position[i][D - 1];
+    if (z > top - 0.5 * c.dx) continue;
+    err = std::max(err, std::abs(c.points.pressure[i] - rho_g * (top - z)) / (rho_g * top));
+  }
+  if (top_out) *top_out = top;
+  return err;
 }
 
 }  // namespace hm::ldd::test

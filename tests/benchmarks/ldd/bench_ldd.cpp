@@ -92,12 +92,16 @@ void BM_PpeAssembly(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * c.points.size());
 }
 
+/// Benchmark argument → preconditioner: 0 ILU, 1 Jacobi, 2 automatic (what the default picks).
+constexpr Preconditioner kPreconditioners[] = {Preconditioner::ilu, Preconditioner::jacobi,
+                                               Preconditioner::automatic};
+
 template <int D>
 void BM_PpeSolve(benchmark::State& state) {
   auto& c = column<D>();
   set_up<D>(state);
   SolverOptions so;
-  so.preconditioner = state.range(1) == 0 ? Preconditioner::ilu : Preconditioner::jacobi;
+  so.preconditioner = kPreconditioners[state.range(1)];
   SolveReport r;
   for (auto _ : state) {
     std::vector<double> p(c.points.pressure.size(), 0.0);
@@ -105,6 +109,7 @@ void BM_PpeSolve(benchmark::State& state) {
   }
   state.counters["iterations"] = r.iterations;
   state.counters["converged"] = r.converged;
+  state.counters["ilu"] = r.preconditioner == Preconditioner::ilu;
   state.SetItemsProcessed(state.iterations() * c.points.size());
 }
 
@@ -112,9 +117,10 @@ template <int D>
 void BM_PpeIterations(benchmark::State& state) {
   omp_set_num_threads(2);
   const double dx = 1.0 / static_cast<double>(state.range(0));
+  const Preconditioner pre = kPreconditioners[state.range(1)];
   for (auto _ : state) {
-    const auto c = D == 2 ? test::water_column<D>(Vec<D>::Constant(1.0), 0.6, dx, 0.1)
-                          : test::water_column<D>(Vec<D>::Constant(1.0), 0.6, dx, 0.25);
+    const auto c = D == 2 ? test::water_column<D>(Vec<D>::Constant(1.0), 0.6, dx, 0.1, pre)
+                          : test::water_column<D>(Vec<D>::Constant(1.0), 0.6, dx, 0.25, pre);
     state.counters["points"] = c.points.size();
     state.counters["iterations"] = c.report.iterations;
     state.counters["solve_s"] = c.times.solve;
@@ -130,21 +136,17 @@ void BM_PpeIterations(benchmark::State& state) {
       ->Args({1, 0})                                                                          \
       ->Args({2, 0})                                                                          \
       ->Args({2, 1})                                                                          \
+      ->Args({2, 2})                                                                          \
       ->Unit(benchmark::kMillisecond)                                                         \
       ->UseRealTime();
 HM_PHASES(2)
 HM_PHASES(3)
 BENCHMARK(BM_PpeIterations<2>)
-    ->Arg(50)
-    ->Arg(100)
-    ->Arg(200)
-    ->Arg(400)
+    ->ArgsProduct({{50, 100, 200, 400}, {0, 1}})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_PpeIterations<3>)
-    ->Arg(10)
-    ->Arg(20)
-    ->Arg(40)
+    ->ArgsProduct({{10, 20, 40}, {0, 1}})
     ->Iterations(1)
     ->Unit(benchmark::kMillisecond);
 
