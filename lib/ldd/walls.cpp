@@ -371,16 +371,24 @@ bool WallMesh<D>::crosses(const Vec<D>& a, const Vec<D>& b) const {
   return false;
 }
 
+/// How many elements use each boundary entity: vertices of segments (2-D), edges of triangles
+/// (3-D, keyed by edge_key). A closed wall uses every one exactly twice.
 template <int D>
-Index WallMesh<D>::open_boundary_count() const {
+std::map<std::uint64_t, int> boundary_uses(const std::vector<std::array<Index, D>>& cells) {
   std::map<std::uint64_t, int> uses;
-  for (const auto& c : cells_) {
+  for (const auto& c : cells) {
     if constexpr (D == 2) {
       for (int k = 0; k < 2; ++k) ++uses[static_cast<std::uint64_t>(c[k])];
     } else {
       for (int k = 0; k < 3; ++k) ++uses[edge_key(c[k], c[(k + 1) % 3])];
     }
   }
+  return uses;
+}
+
+template <int D>
+Index WallMesh<D>::open_boundary_count() const {
+  const auto uses = boundary_uses<D>(cells_);
   Index open = 0;
   for (const auto& [k, n] : uses) open += n != 2 ? 1 : 0;
   return open;
@@ -388,14 +396,7 @@ Index WallMesh<D>::open_boundary_count() const {
 
 template <int D>
 void WallMesh<D>::require_closed(std::string_view purpose) const {
-  std::map<std::uint64_t, int> uses;
-  for (const auto& c : cells_) {
-    if constexpr (D == 2) {
-      for (int k = 0; k < 2; ++k) ++uses[static_cast<std::uint64_t>(c[k])];
-    } else {
-      for (int k = 0; k < 3; ++k) ++uses[edge_key(c[k], c[(k + 1) % 3])];
-    }
-  }
+  const auto uses = boundary_uses<D>(cells_);
   Index open = 0;
   Vec<D> where = Vec<D>::Zero();
   for (const auto& [k, n] : uses) {
