@@ -225,7 +225,8 @@ mesh::SurfaceMesh split_segments_in_two(const mesh::SurfaceMesh& s) {
 double longest_segment(const mesh::SurfaceMesh& s) {
   double longest = 0.0;
   for (Index c = 0; c < s.cells.rows(); ++c)
-    longest = std::max(longest, (s.vertices.row(s.cells(c, 0)) - s.vertices.row(s.cells(c, 1))).norm());
+    longest =
+        std::max(longest, (s.vertices.row(s.cells(c, 0)) - s.vertices.row(s.cells(c, 1))).norm());
   return longest;
 }
 
@@ -233,7 +234,8 @@ mesh::SurfaceMesh refine_uniformly(const mesh::SurfaceMesh& surface, double max_
   HM_ASSERT(max_edge > 0.0, "refine_uniformly needs a positive size");
   mesh::SurfaceMesh out = surface;
   if (surface.dim == 2) {
-    while (out.cells.rows() > 0 && longest_segment(out) > max_edge) out = split_segments_in_two(out);
+    while (out.cells.rows() > 0 && longest_segment(out) > max_edge)
+      out = split_segments_in_two(out);
     return out;
   }
   while (out.cells.rows() > 0 && longest_edge(out) > max_edge) out = split_in_four(out);

@@ -19,10 +19,10 @@ using Coordinates = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen:
 
 /// Volume (3-D) or area (2-D) mesh of an elastic structure, quadratic elements.
 struct StructureMesh {
-  int dim = 3;              ///< 2: tri6 cells, line3 boundary facets; 3: tet10 cells, tri6 facets
-  Coordinates nodes;        ///< n_nodes × dim [m]
-  IndexMatrix cells;        ///< n_cells × (6 | 10), 0-based node indices, gmsh order
-  IndexMatrix facets;       ///< boundary facets, n_facets × (3 | 6), 0-based node indices
+  int dim = 3;         ///< 2: tri6 cells, line3 boundary facets; 3: tet10 cells, tri6 facets
+  Coordinates nodes;   ///< n_nodes × dim [m]
+  IndexMatrix cells;   ///< n_cells × (6 | 10), 0-based node indices, gmsh order
+  IndexMatrix facets;  ///< boundary facets, n_facets × (3 | 6), 0-based node indices
   /// Physical groups of the geometry: name → sorted node indices (every node on the group).
   std::map<std::string, std::vector<Index>> node_groups;
   /// Physical groups of the boundary: name → indices into `facets`.
@@ -38,9 +38,9 @@ struct StructureMesh {
 /// ẑ × (b − a), i.e. its left side. Fluid walls point into the fluid; the boundary surface of a
 /// structure points out of the structure (which is again into the fluid around it).
 struct SurfaceMesh {
-  int dim = 3;             ///< 2: cells are segments (2 vertices); 3: triangles (3 vertices)
-  Coordinates vertices;    ///< n_vertices × dim [m]
-  IndexMatrix cells;       ///< n_cells × dim, 0-based vertex indices
+  int dim = 3;           ///< 2: cells are segments (2 vertices); 3: triangles (3 vertices)
+  Coordinates vertices;  ///< n_vertices × dim [m]
+  IndexMatrix cells;     ///< n_cells × dim, 0-based vertex indices
 };
 
 }  // namespace hm::mesh

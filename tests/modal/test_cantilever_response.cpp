@@ -3,7 +3,8 @@
 // one end, a 1 N load suddenly applied at the free end, five modes, integrated with CFPI.
 // Reference: the corrected step response of LDD-SPEC §2.2 (mode-shape factors and the
 // zeta/sqrt(1 - zeta^2) sin term that the paper's eq. 19 omits):
-//   u_tip(t) = sum_i phi_i(tip) [phi_i(tip) F] / w_i^2 [1 - e^{-z w_i t}(cos w_di t + z/sqrt(1-z^2) sin w_di t)].
+//   u_tip(t) = sum_i phi_i(tip) [phi_i(tip) F] / w_i^2 [1 - e^{-z w_i t}(cos w_di t + z/sqrt(1-z^2)
+//   sin w_di t)].
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -23,8 +24,10 @@ struct Cantilever {
   hm::mesh::StructureMesh mesh = hm::mesh::structured_rectangle(0.079, 0.005, 64, 4);
   hm::fem::ElasticModel model{{12e6, 0.4, 1100.0}, hm::fem::PlaneAssumption::plane_strain, 1.0};
   hm::fem::SystemMatrices system = hm::fem::assemble(mesh, model, "test");
-  hm::fem::DofMap dofs = hm::fem::DofMap::clamp_groups(mesh, std::vector<std::string>{"xmin"}, "test");
-  Eigen::VectorXd force = hm::fem::nodal_force(mesh, "xmax", Eigen::Vector2d(0.0, 1.0));  // 1 N along y
+  hm::fem::DofMap dofs =
+      hm::fem::DofMap::clamp_groups(mesh, std::vector<std::string>{"xmin"}, "test");
+  Eigen::VectorXd force =
+      hm::fem::nodal_force(mesh, "xmax", Eigen::Vector2d(0.0, 1.0));  // 1 N along y
   hm::modal::ModeSet modes(double zeta) const {
     hm::modal::ModeRequest request{.count = 5, .max_frequency_hz = std::nullopt, .context = "test"};
     const auto solution = hm::modal::solve_eigenproblem(dofs.reduce(system.stiffness),
@@ -32,7 +35,8 @@ struct Cantilever {
     hm::modal::Damping damping;
     damping.kind = zeta > 0 ? hm::modal::Damping::Kind::uniform : hm::modal::Damping::Kind::none;
     damping.ratio = zeta;
-    return hm::modal::build_mode_set(solution, system, dofs, mesh, Eigen::Vector3d::Zero(), damping);
+    return hm::modal::build_mode_set(solution, system, dofs, mesh, Eigen::Vector3d::Zero(),
+                                     damping);
   }
   /// The y DOF of the node at the middle of the free end.
   Eigen::Index tip_dof() const {
@@ -45,13 +49,15 @@ struct Cantilever {
   }
 };
 
-double analytic_tip(const hm::modal::ModeSet& m, const Eigen::VectorXd& force, Eigen::Index tip, double t) {
+double analytic_tip(const hm::modal::ModeSet& m, const Eigen::VectorXd& force, Eigen::Index tip,
+                    double t) {
   double u = 0.0;
   for (int i = 0; i < m.count(); ++i) {
     const double w = m.omega[i], z = m.damping_ratio[i], wd = w * std::sqrt(1 - z * z);
     const double modal_force = m.shapes.col(i).dot(force);
     u += m.shapes(tip, i) * modal_force / (w * w) *
-         (1 - std::exp(-z * w * t) * (std::cos(wd * t) + z / std::sqrt(1 - z * z) * std::sin(wd * t)));
+         (1 -
+          std::exp(-z * w * t) * (std::cos(wd * t) + z / std::sqrt(1 - z * z) * std::sin(wd * t)));
   }
   return u;
 }
