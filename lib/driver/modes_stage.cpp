@@ -6,6 +6,7 @@
 
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "core/progress.hpp"
 #include "driver/structure_io.hpp"
 #include "fem/assembly.hpp"
 #include "fem/dof_map.hpp"
@@ -227,6 +228,8 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
                 mesh_artefact.string(), mesh.structure.dim, scene.file().string(),
                 scene.dimension());
 
+  // Phases: assembly, eigensolver, checks and output (a bar on a terminal, lines in logs).
+  Progress progress("fsi-modes", 3, "phases", spdlog::get_level() > spdlog::level::info);
   const auto start = std::chrono::steady_clock::now();
   const auto seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -237,11 +240,13 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
   const fem::DofMap dofs = fem::DofMap::clamp_groups(mesh.structure, clamped, "structure.clamped");
   spdlog::info("fsi-modes: assembled K and M, {} DOFs ({} free, {} clamped), {:.2f} s",
                dofs.full_count(), dofs.free_count(), dofs.clamped_count(), seconds());
+  progress.update(1);
   const modal::EigenSolution solution =
       modal::solve_eigenproblem(dofs.reduce(system.stiffness), dofs.reduce(system.mass),
                                 mode_request(scene), eigen_options(scene));
   spdlog::info("fsi-modes: eigensolver done ({} factorisation {:.2f} s), {:.2f} s",
                modal::to_string(solution.factorisation), solution.factorisation_seconds, seconds());
+  progress.update(2);
   const modal::ModeSet modes = modal::build_mode_set(solution, system, dofs, mesh.structure,
                                                      reference_point(scene), damping(scene));
   const Eigen::VectorXd orthogonality = orthogonality_per_mode(modes, system.mass);
@@ -267,6 +272,7 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
         modes.solver.status, modes.solver.converged, modes.solver.requested, modes.solver.message,
         target.string(), output.string());
   write_modes_xdmf(output, mesh, modes);
+  progress.finish();
   log_frequency_table(modes, orthogonality);
 }
 
