@@ -78,7 +78,9 @@ std::string inspect_json(const std::filesystem::path& artefact) {
     j["inputs"].push_back({{"role", input.role}, {"path", input.path}, {"sha256", input.sha256}});
   nlohmann::ordered_json attributes;
   for (const auto& a : s.attributes) {
-    if (a.number)
+    if (a.number && a.integer)
+      attributes[a.name] = static_cast<std::int64_t>(*a.number);
+    else if (a.number)
       attributes[a.name] = *a.number;
     else
       attributes[a.name] = a.text;

@@ -565,7 +565,13 @@ ArtefactSummary summarise(const std::filesystem::path& path, std::size_t max_val
   for (const auto& name : attribute_names(file->get())) {
     RootAttribute a{name, read_string_attribute(file->get(), name).value_or(""),
                     read_number_attribute(file->get(), name)};
-    if (a.number) a.text = fmt::format("{}", *a.number);
+    if (a.number) {
+      Handle attribute(H5Aopen(file->get(), name.c_str(), H5P_DEFAULT), H5Aclose);
+      Handle type(H5Aget_type(attribute.get()), H5Tclose);
+      a.integer = H5Tget_class(type.get()) == H5T_INTEGER;
+      a.text = a.integer ? fmt::format("{}", static_cast<std::int64_t>(*a.number))
+                         : fmt::format("{}", *a.number);
+    }
     summary.attributes.push_back(std::move(a));
   }
   for (const auto& dataset_path : dataset_paths(file->get())) {

@@ -123,6 +123,7 @@ struct RootAttribute {
   std::string name;
   std::string text;  ///< strings verbatim, numbers formatted
   std::optional<double> number;
+  bool integer = false;  ///< stored as an integer type
 };
 struct ArtefactSummary {
   Provenance provenance;
