@@ -107,13 +107,6 @@ std::vector<std::string> clamped_groups(const io::Scene& scene) {
   return clamped.empty() ? std::vector<std::string>{} : std::vector<std::string>{clamped};
 }
 
-/// max_j |(ΦᵀMΦ − I)_ij| for every mode i.
-Eigen::VectorXd orthogonality_per_mode(const modal::ModeSet& modes, const fem::SparseMatrix& mass) {
-  const Eigen::MatrixXd gram = modes.shapes.transpose() * (mass * modes.shapes);
-  const Eigen::MatrixXd error = gram - Eigen::MatrixXd::Identity(gram.rows(), gram.cols());
-  return error.cwiseAbs().rowwise().maxCoeff();
-}
-
 /// [n_modes, n_nodes, dim] row-major from the n_dofs × n_modes shapes (DOF = dim·node + c).
 io::MatrixRM stacked_shapes(const Eigen::MatrixXd& shapes) {
   return io::MatrixRM(shapes.transpose());
@@ -129,8 +122,7 @@ io::MatrixRM surface_shapes(const Eigen::MatrixXd& shapes,
   return out;
 }
 
-void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes,
-                 const Eigen::VectorXd& orthogonality, const MeshArtefact& mesh) {
+void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes, const MeshArtefact& mesh) {
   const auto n_modes = static_cast<std::uint64_t>(modes.count());
   const auto n_nodes = static_cast<std::uint64_t>(mesh.structure.node_count());
   const auto dim = static_cast<std::uint64_t>(mesh.structure.dim);
@@ -144,7 +136,7 @@ void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes,
           surface_shapes(modes.shapes, mesh.surface.volume_node, mesh.structure.dim).data(),
           {n_modes, n_surface, dim});
   w.write_vector(ds::residual, modes.residuals);
-  w.write_vector(ds::orthogonality_error, orthogonality);
+  w.write_vector(ds::orthogonality_error, modes.orthogonality_errors);
   w.write(ds::participation_translation, io::MatrixRM(modes.translational_participation));
   w.write(ds::participation_rotation, io::MatrixRM(modes.rotational_participation));
   w.write(ds::effective_mass_translation, io::MatrixRM(modes.translational_effective_mass));
@@ -198,13 +190,13 @@ void write_modes_xdmf(const std::filesystem::path& h5, const MeshArtefact& mesh,
   io::write_xdmf(std::filesystem::path(h5).replace_extension(".xdmf"), h5, {grid});
 }
 
-void log_frequency_table(const modal::ModeSet& modes, const Eigen::VectorXd& orthogonality) {
+void log_frequency_table(const modal::ModeSet& modes) {
   std::string table =
       "  mode   frequency [Hz]   omega [rad/s]   zeta     residual   orthogonality\n";
   for (int i = 0; i < modes.count(); ++i)
     table += fmt::format("  {:>4}   {:>14.6f}   {:>13.5f}   {:<6.4g}   {:.2e}   {:.2e}\n", i + 1,
                          modes.frequency_hz[i], modes.omega[i], modes.damping_ratio[i],
-                         modes.residuals[i], orthogonality[i]);
+                         modes.residuals[i], modes.orthogonality_errors[i]);
   spdlog::info("fsi-modes: {} mode(s) ({} backend, {} factorisation, {} operator applications)\n{}",
                modes.count(), modes.solver.backend, modes.solver.factorisation,
                modes.solver.op_applications, table);
@@ -249,7 +241,6 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
   progress.update(2);
   const modal::ModeSet modes = modal::build_mode_set(solution, system, dofs, mesh.structure,
                                                      reference_point(scene), damping(scene));
-  const Eigen::VectorXd orthogonality = orthogonality_per_mode(modes, system.mass);
   const bool converged = solution.pairs.status == modal::EigenStatus::converged;
 
   const std::filesystem::path target =
@@ -257,7 +248,7 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
   io::ArtefactWriter writer(
       target, io::modes_schema(), "fsi-modes", scene.parameters_for("fsi-modes"),
       {io::input_record("scene", scene.file()), io::input_record("mesh", mesh_artefact)});
-  write_modes(writer, modes, orthogonality, mesh);
+  write_modes(writer, modes, mesh);
   write_solver_attributes(writer, modes);
   if (!converged)
     writer.set_attribute(
@@ -273,7 +264,7 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
         target.string(), output.string());
   write_modes_xdmf(output, mesh, modes);
   progress.finish();
-  log_frequency_table(modes, orthogonality);
+  log_frequency_table(modes);
 }
 
 }  // namespace hm::driver

@@ -53,9 +53,13 @@ Eigen::VectorXd residuals(const fem::SystemMatrices& system, const fem::DofMap& 
   return out;
 }
 
-double orthogonality_error(const fem::SparseMatrix& m, const Eigen::MatrixXd& shapes) {
+/// max_j |(ΦᵀMΦ − I)_ij| for every mode i.
+Eigen::VectorXd orthogonality_errors(const fem::SparseMatrix& m, const Eigen::MatrixXd& shapes) {
   const Eigen::MatrixXd gram = shapes.transpose() * (m * shapes);
-  return (gram - Eigen::MatrixXd::Identity(gram.rows(), gram.cols())).cwiseAbs().maxCoeff();
+  return (gram - Eigen::MatrixXd::Identity(gram.rows(), gram.cols()))
+      .cwiseAbs()
+      .rowwise()
+      .maxCoeff();
 }
 
 Eigen::VectorXd signed_sqrt(const Eigen::VectorXd& lambda) {
@@ -134,8 +138,8 @@ ModeSet build_mode_set(const EigenSolution& solution, const fem::SystemMatrices&
   mass_normalise(system.mass, modes.shapes);
   fix_signs(modes.shapes);
   modes.residuals = residuals(system, dofs, modes.eigenvalues, modes.shapes);
-  modes.orthogonality_error =
-      modes.count() > 0 ? orthogonality_error(system.mass, modes.shapes) : 0.0;
+  modes.orthogonality_errors = orthogonality_errors(system.mass, modes.shapes);
+  modes.orthogonality_error = modes.count() > 0 ? modes.orthogonality_errors.maxCoeff() : 0.0;
   const Eigen::MatrixXd phi_t_m = modes.shapes.transpose() * system.mass;
   modes.translational_participation = phi_t_m * fem::rigid_translations(mesh);
   modes.rotational_participation = phi_t_m * fem::rigid_rotations(mesh, reference_point);

@@ -57,12 +57,13 @@ struct SolverInfo {
 
 struct ModeSet {
   int dim = 3;
-  Eigen::VectorXd eigenvalues;     ///< λ [rad²/s²]
-  Eigen::VectorXd omega;           ///< ω [rad/s]
-  Eigen::VectorXd frequency_hz;    ///< f [Hz]
-  Eigen::MatrixXd shapes;          ///< n_dofs × n_modes, mass-normalised
-  Eigen::VectorXd residuals;       ///< relative residual per mode (see header comment)
-  double orthogonality_error = 0;  ///< max |ΦᵀMΦ − I|
+  Eigen::VectorXd eigenvalues;           ///< λ [rad²/s²]
+  Eigen::VectorXd omega;                 ///< ω [rad/s]
+  Eigen::VectorXd frequency_hz;          ///< f [Hz]
+  Eigen::MatrixXd shapes;                ///< n_dofs × n_modes, mass-normalised
+  Eigen::VectorXd residuals;             ///< relative residual per mode (see header comment)
+  double orthogonality_error = 0;        ///< max |ΦᵀMΦ − I|
+  Eigen::VectorXd orthogonality_errors;  ///< per mode i: max_j |(ΦᵀMΦ − I)_ij|
   Eigen::Vector3d reference_point = Eigen::Vector3d::Zero();  ///< [m]
   Eigen::MatrixXd translational_participation;                ///< n_modes × dim [kg^½]
   Eigen::MatrixXd rotational_participation;                   ///< n_modes × (3 | 1) [kg^½·m]
