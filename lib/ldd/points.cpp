@@ -80,6 +80,20 @@ void PointSet<D>::reorder(std::span<const Index> order) {
 }
 
 template <int D>
+void PointSet<D>::retain(std::span<const Index> kept) {
+  HM_ASSERT(std::is_sorted(kept.begin(), kept.end()), "retain: indices must ascend");
+  permute(position, kept);
+  permute(velocity, kept);
+  permute(pressure, kept);
+  permute(kind, kept);
+  permute(type, kept);
+  permute(wall_normal, kept);
+  permute(wall_velocity, kept);
+  permute(wall_acceleration, kept);
+  permute(host, kept);
+}
+
+template <int D>
 Index PointSet<D>::count(PointType t) const {
   return static_cast<Index>(std::count(type.begin(), type.end(), t));
 }

@@ -46,6 +46,8 @@ struct PointSet {
   Index add_wall_node(const Vec<D>& x, const Vec<D>& normal, const WallHost<D>& where);
   /// Permutes every field: new point k is old point order[k]. `order` is a permutation.
   void reorder(std::span<const Index> order);
+  /// Keeps only the points `kept` (ascending indices), in that order.
+  void retain(std::span<const Index> kept);
   /// Number of points of a type.
   Index count(PointType t) const;
 };

@@ -213,7 +213,8 @@ PoissonData ppe_data(const PointSet<D>& pts, const Neighbours& nb, const Operato
       full = full && !near_wall && !dirichlet_type(pts.type[j]);
     }
     if (full)
-      d.source[i] -= opt.volume_relaxation * rho / (opt.dt * opt.dt) *
+      d.source[i] -= opt.volume_relaxation * rho /
+                     (opt.dt * std::max(opt.dt, opt.volume_time_scale)) *
                      (ops.number_density[i] - opt.reference_density) / opt.reference_density;
   }
   return d;

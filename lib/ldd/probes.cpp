@@ -1,0 +1,283 @@
+#include "ldd/probes.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+
+#include <Eigen/Geometry>
+
+#include "core/errors.hpp"
+#include "ldd/free_surface.hpp"
+
+namespace hm::ldd {
+namespace {
+
+/// A fluid point that carries the flow: every type but isolated (a lone droplet is ballistic).
+template <int D>
+bool is_connected_fluid(const PointSet<D>& points, Index i) {
+  return points.kind[i] == PointKind::fluid && points.type[i] != PointType::isolated;
+}
+
+/// A wall node with a pressure: type wall (Neumann) or surface (contact line), not inactive.
+template <int D>
+bool is_active_wall_node(const PointSet<D>& points, Index i) {
+  return points.kind[i] == PointKind::wall &&
+         (points.type[i] == PointType::wall || points.type[i] == PointType::surface);
+}
+
+/// Wall node j stands for the fluid on its side only: x behind it (the other side of a thin
+/// wall) does not see it. A probe exactly on the wall does.
+template <int D>
+bool facing_away(const PointSet<D>& points, Index j, const Vec<D>& x, double radius) {
+  return points.wall_normal[j].dot(x - points.position[j]) < -1e-9 * radius;
+}
+
+template <int D>
+bool blocked_by_a_wall(std::span<const WallMesh<D>> walls, const Vec<D>& a, const Vec<D>& b) {
+  for (const auto& w : walls)
+    if (w.crosses(a, b)) return true;
+  return false;
+}
+
+/// Distance [m] from r to the vertical line through x (the last axis is vertical).
+template <int D>
+double horizontal_distance(const Vec<D>& r, const Vec<D>& x) {
+  return (r - x).template head<D - 1>().norm();
+}
+
+// ---- wall node lookup
+// ----------------------------------------------------------------------------
+
+/// The active wall nodes of one body in cells of size `cell`, sorted by cell: a query visits the
+/// 3^D cells around a point and finds each cell's nodes by binary search.
+template <int D>
+class WallNodeGrid {
+ public:
+  using Cell = std::array<std::int64_t, D>;
+
+  WallNodeGrid(const PointSet<D>& points, int body, double cell) : cell_(cell) {
+    for (Index i = 0; i < points.size(); ++i)
+      if (is_active_wall_node(points, i) && points.host[i].body == body)
+        entries_.emplace_back(cell_of(points.position[i]), i);
+    std::sort(entries_.begin(), entries_.end());
+  }
+
+  /// Calls visit(j) for every node j whose cell is within one cell of x's.
+  template <typename Visit>
+  void for_each_near(const Vec<D>& x, Visit&& visit) const {
+    const Cell centre = cell_of(x);
+    Cell offset;
+    offset.fill(-1);
+    while (true) {
+      Cell c;
+      for (int a = 0; a < D; ++a) c[a] = centre[a] + offset[a];
+      auto it = std::lower_bound(entries_.begin(), entries_.end(), std::pair<Cell, Index>(c, -1));
+      for (; it != entries_.end() && it->first == c; ++it) visit(it->second);
+      int a = 0;
+      while (a < D && ++offset[a] > 1) offset[a++] = -1;
+      if (a == D) break;
+    }
+  }
+
+ private:
+  Cell cell_of(const Vec<D>& x) const {
+    Cell c;
+    for (int a = 0; a < D; ++a) c[a] = static_cast<std::int64_t>(std::floor(x[a] / cell_));
+    return c;
+  }
+  double cell_;
+  std::vector<std::pair<Cell, Index>> entries_;
+};
+
+/// Shepard pressure at x from the nodes of `grid` within dx whose normal is within 60° of
+/// `side`; `weight` receives Σ W (0: dry).
+template <int D>
+double shepard_wall_pressure(const PointSet<D>& points, const WallNodeGrid<D>& grid,
+                             const Vec<D>& x, const Vec<D>& side, double dx, double& weight) {
+  constexpr double min_alignment = 0.5;  // cos 60°
+  double sum_w = 0.0, sum_wp = 0.0;
+  grid.for_each_near(x, [&](Index j) {
+    if (points.wall_normal[j].dot(side) < min_alignment) return;
+    const double r = (points.position[j] - x).norm();
+    if (r >= dx) return;
+    const double w = wendland_c2(r / dx);
+    sum_w += w;
+    sum_wp += w * points.pressure[j];
+  });
+  weight = sum_w;
+  return sum_w > 0.0 ? sum_wp / sum_w : 0.0;
+}
+
+// ---- quadrature on an element -------------------------------------------------------------------
+
+template <int D>
+struct QuadraturePoint {
+  Vec<D> barycentric;
+  double measure;  ///< length (2-D) or area (3-D) of the cell [m or m²]
+};
+
+/// Midpoints of k equal pieces of a segment, k = ⌈length / (dx/2)⌉.
+std::vector<QuadraturePoint<2>> element_quadrature(const std::array<Vec<2>, 2>& x, double dx) {
+  const double length = (x[1] - x[0]).norm();
+  const int k = std::max(1, static_cast<int>(std::ceil(length / (0.5 * dx) - 1e-9)));
+  std::vector<QuadraturePoint<2>> q;
+  q.reserve(k);
+  for (int s = 0; s < k; ++s) {
+    const double t = (s + 0.5) / k;
+    q.push_back({Vec<2>(1.0 - t, t), length / k});
+  }
+  return q;
+}
+
+/// Centroids of the k² triangles of the regular k-subdivision of a triangle, k = ⌈longest
+/// edge / (dx/2)⌉; every sub-triangle has area A/k².
+std::vector<QuadraturePoint<3>> element_quadrature(const std::array<Vec<3>, 3>& x, double dx) {
+  const double area = 0.5 * (x[1] - x[0]).cross(x[2] - x[0]).norm();
+  const double edge = std::max({(x[1] - x[0]).norm(), (x[2] - x[1]).norm(), (x[0] - x[2]).norm()});
+  const int k = std::max(1, static_cast<int>(std::ceil(edge / (0.5 * dx) - 1e-9)));
+  const double piece = area / (double(k) * k);
+  std::vector<QuadraturePoint<3>> q;
+  q.reserve(static_cast<std::size_t>(k) * k);
+  auto add = [&](double b1, double b2) { q.push_back({Vec<3>(1.0 - b1 - b2, b1, b2), piece}); };
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; i + j < k; ++j) {
+      add((3.0 * i + 1.0) / (3.0 * k), (3.0 * j + 1.0) / (3.0 * k));  // pointing up
+      if (i + j <= k - 2) add((3.0 * i + 2.0) / (3.0 * k), (3.0 * j + 2.0) / (3.0 * k));  // down
+    }
+  return q;
+}
+
+/// One element's share of the loads: force on each of its vertices, and its wetted measure.
+template <int D>
+struct ElementLoad {
+  std::array<Vec<D>, D> vertex_force;
+  double wetted = 0.0;
+};
+
+template <int D>
+ElementLoad<D> element_load(const PointSet<D>& points, const WallMesh<D>& wall,
+                            const WallNodeGrid<D>& grid, Index e, double dx) {
+  const auto& cell = wall.element(e);
+  std::array<Vec<D>, D> x;
+  for (int k = 0; k < D; ++k) x[k] = wall.vertices()[cell[k]];
+  const Vec<D> n = wall.normal_at(e, Vec<D>::Constant(1.0 / D));
+  ElementLoad<D> load;
+  load.vertex_force.fill(Vec<D>::Zero());
+  const int sides = wall.thin() ? 2 : 1;
+  for (const auto& q : element_quadrature(x, dx)) {
+    Vec<D> xq = Vec<D>::Zero();
+    for (int k = 0; k < D; ++k) xq += q.barycentric[k] * x[k];
+    Vec<D> traction = Vec<D>::Zero();
+    for (int s = 0; s < sides; ++s) {
+      const Vec<D> side = s == 0 ? n : Vec<D>(-n);
+      double weight = 0.0;
+      const double p = shepard_wall_pressure(points, grid, xq, side, dx, weight);
+      traction -= p * side;
+      if (weight > 0.0) load.wetted += q.measure;
+    }
+    for (int k = 0; k < D; ++k) load.vertex_force[k] += (q.measure * q.barycentric[k]) * traction;
+  }
+  return load;
+}
+
+}  // namespace
+
+// ---- probes -------------------------------------------------------------------------------------
+
+template <int D>
+double probe_pressure(const PointSet<D>& points, std::span<const WallMesh<D>> walls,
+                      const Vec<D>& x, double radius, double dx, bool* wet) {
+  HM_ASSERT(radius > 0.0 && dx > 0.0, "probe_pressure: radius {} and dx {} must be > 0", radius,
+            dx);
+  const Index n = points.size();
+  double sum_w = 0.0, sum_wp = 0.0;
+#pragma omp parallel for reduction(+ : sum_w, sum_wp) schedule(static)
+  for (Index j = 0; j < n; ++j) {
+    if (!is_connected_fluid(points, j) && !is_active_wall_node(points, j)) continue;
+    const double r = (points.position[j] - x).norm();
+    if (r >= radius) continue;
+    if (points.kind[j] == PointKind::wall && facing_away(points, j, x, radius)) continue;
+    if (blocked_by_a_wall<D>(walls, x, points.position[j])) continue;
+    const double w = wendland_c2(r / radius);
+    sum_w += w;
+    sum_wp += w * points.pressure[j];
+  }
+  constexpr double wet_fraction = 0.1;
+  const bool is_wet = sum_w > 0.0 && sum_w >= wet_fraction * lattice_number_density<D>(dx, radius);
+  if (wet) *wet = is_wet;
+  return is_wet ? sum_wp / sum_w : 0.0;
+}
+
+template <int D>
+double probe_elevation(const PointSet<D>& points, const Vec<D>& x, double dx, bool* wet) {
+  HM_ASSERT(dx > 0.0, "probe_elevation: dx {} must be > 0", dx);
+  std::vector<double> heights;
+  for (Index i = 0; i < points.size(); ++i)
+    if (is_connected_fluid(points, i) && horizontal_distance<D>(points.position[i], x) <= dx)
+      heights.push_back(points.position[i][D - 1]);
+  if (wet) *wet = !heights.empty();
+  if (heights.empty()) return 0.0;
+  std::sort(heights.begin(), heights.end());
+  constexpr double max_gap = 2.0;  // [dx]: a larger vertical gap is air under spray or a jet
+  std::size_t top = 0;
+  while (top + 1 < heights.size() && heights[top + 1] - heights[top] <= max_gap * dx) ++top;
+  return heights[top] + 0.5 * dx;
+}
+
+template <int D>
+double probe_front(const PointSet<D>& points, const Vec<D>& direction, double band_low,
+                   double band_high, double dx, bool* found) {
+  const double length = direction.norm();
+  HM_ASSERT(length > 0.0, "probe_front: the direction must not be zero");
+  const Vec<D> d = direction / length;
+  const Index n = points.size();
+  double front = -std::numeric_limits<double>::infinity();
+#pragma omp parallel for reduction(max : front) schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    if (!is_connected_fluid(points, i)) continue;
+    const double z = points.position[i][D - 1];
+    if (z < band_low || z > band_high) continue;
+    front = std::max(front, d.dot(points.position[i]));
+  }
+  const bool any = std::isfinite(front);
+  if (found) *found = any;
+  return any ? front + 0.5 * dx : 0.0;
+}
+
+template <int D>
+WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& wall, int body,
+                                 double dx) {
+  HM_ASSERT(dx > 0.0, "wall_pressure_loads: dx {} must be > 0", dx);
+  const WallNodeGrid<D> grid(points, body, dx);
+  const Index elements = wall.element_count();
+  std::vector<ElementLoad<D>> per_element(static_cast<std::size_t>(elements));
+#pragma omp parallel for schedule(dynamic, 16)
+  for (Index e = 0; e < elements; ++e) per_element[e] = element_load(points, wall, grid, e, dx);
+  // Serial accumulation: deterministic sums, Σ vertex_force == total bit for bit.
+  WallLoads<D> loads;
+  loads.vertex_force.assign(wall.vertices().size(), Vec<D>::Zero());
+  loads.element_force.assign(static_cast<std::size_t>(elements), Vec<D>::Zero());
+  for (Index e = 0; e < elements; ++e) {
+    for (int k = 0; k < D; ++k) {
+      loads.vertex_force[wall.element(e)[k]] += per_element[e].vertex_force[k];
+      loads.element_force[e] += per_element[e].vertex_force[k];
+    }
+    loads.wetted += per_element[e].wetted;
+  }
+  for (const auto& f : loads.vertex_force) loads.total += f;
+  return loads;
+}
+
+template double probe_pressure<2>(const PointSet<2>&, std::span<const WallMesh<2>>, const Vec<2>&,
+                                  double, double, bool*);
+template double probe_pressure<3>(const PointSet<3>&, std::span<const WallMesh<3>>, const Vec<3>&,
+                                  double, double, bool*);
+template double probe_elevation<2>(const PointSet<2>&, const Vec<2>&, double, bool*);
+template double probe_elevation<3>(const PointSet<3>&, const Vec<3>&, double, bool*);
+template double probe_front<2>(const PointSet<2>&, const Vec<2>&, double, double, double, bool*);
+template double probe_front<3>(const PointSet<3>&, const Vec<3>&, double, double, double, bool*);
+template WallLoads<2> wall_pressure_loads<2>(const PointSet<2>&, const WallMesh<2>&, int, double);
+template WallLoads<3> wall_pressure_loads<3>(const PointSet<3>&, const WallMesh<3>&, int, double);
+
+}  // namespace hm::ldd
