@@ -1,6 +1,7 @@
 # Rules shared by every pipeline. A case's Makefile sets nothing but includes this file:
 #   make -C pipelines/<case>            run every stale stage
 #   make -C pipelines/<case> mesh       stop after the mesh (likewise: modes, map)
+#   make -C pipelines/<case> simulate   the flow: results.h5, probes.csv, snapshots/
 #   make -C pipelines/<case> clean      remove this case's outputs
 # Outputs go to out/<case>/<variant>/ at the repository root. Each stage's command line is
 # printed as it runs, so it can be rerun by hand (drop --if-stale to force a rerun).
@@ -10,25 +11,37 @@
 # canonical scene parameters of that stage, SHA-256 of every input) with what a run now would
 # record, and does nothing when they agree. `touch` on an input reruns nothing; an edited
 # material value reruns fsi-modes and what follows, not fsi-mesh.
+#
+# Variants: `make VARIANT=smoke` runs the case's `scene.smoke.toml` when it exists (a complete
+# scene, e.g. a coarser dx and a shorter end time for ctest), else `scene.toml`; the default
+# variant `full` runs `scene.toml` (or `scene.full.toml`). Each variant has its own outputs.
+#
+# What runs follows the scene: a [structure] section brings mesh → modes → map; a [fluid]
+# section brings simulate (on mesh.h5 when there is a structure, else fsi-simulate meshes the
+# [[wall]]s itself, as fsi-mesh needs a structure).
 ROOT     := $(abspath $(dir $(lastword $(MAKEFILE_LIST)))/..)
 CASE     ?= $(notdir $(abspath $(CURDIR)))
 VARIANT  ?= full
 HM_BUILD ?= $(ROOT)/build/release
 BIN      := $(HM_BUILD)/stages
 OUT      := $(ROOT)/out/$(CASE)/$(VARIANT)
-SCENE    := $(abspath scene.toml)
+SCENE    := $(abspath $(firstword $(wildcard scene.$(VARIANT).toml) scene.toml))
+HAS_STRUCTURE := $(shell grep -q '^\[structure\]' $(SCENE) && echo yes)
+HAS_FLUID     := $(shell grep -q '^\[fluid\]' $(SCENE) && echo yes)
 
-FSI_MESH    := $(BIN)/fsi-mesh/fsi-mesh
-FSI_MODES   := $(BIN)/fsi-modes/fsi-modes
-FSI_MAP     := $(BIN)/fsi-map/fsi-map
-FSI_INSPECT := $(BIN)/fsi-inspect/fsi-inspect
+FSI_MESH     := $(BIN)/fsi-mesh/fsi-mesh
+FSI_MODES    := $(BIN)/fsi-modes/fsi-modes
+FSI_MAP      := $(BIN)/fsi-map/fsi-map
+FSI_SIMULATE := $(BIN)/fsi-simulate/fsi-simulate
+FSI_INSPECT  := $(BIN)/fsi-inspect/fsi-inspect
 
-.PHONY: all mesh modes map summary clean FORCE
+.PHONY: all mesh modes map simulate summary clean FORCE
 
-all: map summary
+all: $(if $(HAS_STRUCTURE),map) $(if $(HAS_FLUID),simulate) summary
 mesh: $(OUT)/mesh.h5
 modes: $(OUT)/modes.h5
 map: $(OUT)/mapped.h5
+simulate: $(OUT)/results.h5
 
 $(OUT)/mesh.h5: FORCE
 	@mkdir -p $(OUT)
@@ -40,10 +53,15 @@ $(OUT)/modes.h5: $(OUT)/mesh.h5 FORCE
 $(OUT)/mapped.h5: $(OUT)/modes.h5 FORCE
 	$(FSI_MAP) $(SCENE) --modes $(OUT)/modes.h5 -o $@ --if-stale
 
+# The flow; probes.csv and snapshots/ (ParaView: snapshots/flow.xdmf) land next to results.h5.
+$(OUT)/results.h5: $(if $(HAS_STRUCTURE),$(OUT)/mesh.h5) FORCE
+	@mkdir -p $(OUT)
+	$(FSI_SIMULATE) $(SCENE) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) -o $@ --if-stale
+
 FORCE:
 
-summary: $(OUT)/modes.h5
-	@$(FSI_INSPECT) $(OUT)/modes.h5
+summary: $(if $(HAS_STRUCTURE),$(OUT)/modes.h5) $(if $(HAS_FLUID),$(OUT)/results.h5)
+	@$(foreach artefact,$^,$(FSI_INSPECT) $(artefact);)
 
 clean:
 	rm -rf $(OUT)

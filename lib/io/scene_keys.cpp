@@ -10,6 +10,7 @@ constexpr double inf = 1e300;
 const std::vector<std::string> mesh_stage{"fsi-mesh"};
 const std::vector<std::string> modes_stage{"fsi-modes"};
 const std::vector<std::string> map_stage{"fsi-map"};
+const std::vector<std::string> simulate_stage{"fsi-simulate"};
 
 KeyDecl number(std::string path, std::string def, std::string unit, double min, double max,
                std::string doc, std::vector<std::string> stages, bool min_excl = false,
@@ -92,6 +93,19 @@ const std::vector<SectionDecl>& scene_sections() {
       {"wall[]", false,
        "Rigid fluid walls as surface meshes (segments in 2-D, triangles in 3-D, normals into the "
        "fluid), meshed by fsi-mesh into mesh.h5 under /walls/<name>."},
+      {"fluid", false,
+       "The fluid (LDD meshless flow, fsi-simulate). Its presence makes the scene a flow scene: "
+       "[time] and at least one [[fluid.region]] are then required."},
+      {"fluid.region[]", false,
+       "Boxes initially filled with fluid (lattice points at spacing fluid.dx, at least dx/2 from "
+       "every wall); points of overlapping regions are kept once."},
+      {"time", false,
+       "Time stepping and output times of fsi-simulate (required for a flow scene)."},
+      {"solver", false, "Numerical parameters of the LDD flow solver (LDD-SPEC §1)."},
+      {"probe[]", false,
+       "Measurements written every probe interval to probes.csv (first column `t [s]`, then "
+       "`<name>.<quantity> [unit]`) and to results.h5: pressure → `.p [Pa]`, elevation → "
+       "`.eta [m]`, front → `.front [m]`, force → `.fx [N]`, `.fy [N]` (, `.fz [N]`)."},
       {"modes", false, "Mode extraction (fsi-modes)."},
       {"map", false, "Mapping of the mode shapes onto the surface the fluid sees (fsi-map)."},
   };
@@ -154,6 +168,40 @@ const std::vector<KeyDecl>& scene_keys() {
              true),
       boolean("wall[].flip_normals", "false",
               "reverse the normals of a file wall whose fluid side is the other one", mesh_stage),
+      boolean("wall[].thin", "false",
+              "the wall is wetted on both sides (a baffle or gate): pairs through it are cut and "
+              "wall nodes are sampled on both sides",
+              simulate_stage),
+      text("wall[].motion", "\"none\"", {"none", "sway", "roll", "table"},
+           "prescribed rigid motion: none (fixed), sway A·sin(2πt/T), roll θ0·sin(2πft) about "
+           "roll_pivot, or a CSV time table (motion_table)",
+           simulate_stage),
+      number("wall[].sway_amplitude", "0.0", "m", 0, inf,
+             "sway amplitude A (required for motion = \"sway\"; 0 = not given)", simulate_stage,
+             true),
+      number("wall[].sway_period", "0.0", "s", 0, inf,
+             "sway period T (required for motion = \"sway\"; 0 = not given)", simulate_stage, true),
+      vector("wall[].sway_direction", "[]", "1", 0,
+             "direction of the sway, normalised (default: +x)", simulate_stage),
+      number("wall[].roll_amplitude", "0.0", "rad", 0, 3.141592653589793,
+             "roll amplitude θ0 (required for motion = \"roll\"; 0 = not given)", simulate_stage,
+             true),
+      number("wall[].roll_frequency", "0.0", "Hz", 0, inf,
+             "roll frequency f (required for motion = \"roll\"; 0 = not given)", simulate_stage,
+             true),
+      vector("wall[].roll_pivot", "[]", "m", 0,
+             "point the roll axis passes through (required for motion = \"roll\" and for a "
+             "motion_table with a theta column)",
+             simulate_stage),
+      vector("wall[].roll_axis", "[]", "1", 3,
+             "3-D only: roll axis direction, normalised (default: z; 2-D always rolls about z)",
+             simulate_stage),
+      number("wall[].motion_ramp", "0.0", "s", 0, inf,
+             "C² start-up ramp of sway and roll over this time (0: none)", simulate_stage),
+      text("wall[].motion_table", "\"\"", {},
+           "CSV time table for motion = \"table\", relative to the scene: `t [s]` then any of "
+           "`x [m]`, `y [m]`, `z [m]`, `theta [rad]` or `theta [deg]` (cubic splines)",
+           simulate_stage),
 
       // [structure]
       text("structure.formulation", "\"plane_strain\"", {"plane_strain", "plane_stress"},
@@ -174,6 +222,93 @@ const std::vector<KeyDecl>& scene_keys() {
              modes_stage, true, true),
       number("structure.material.density", "", "kg/m^3", 0, inf, "mass density rho", modes_stage,
              true),
+
+      // [fluid]
+      number("fluid.density", "1000.0", "kg/m^3", 0, inf, "fluid density ρ", simulate_stage, true),
+      number("fluid.viscosity", "1e-6", "m^2/s", 0, inf,
+             "kinematic viscosity ν (0: inviscid; water at 20 °C: 1.0e-6)", simulate_stage),
+      vector("fluid.gravity", "[]", "m/s^2", 0,
+             "gravitational acceleration (default: −9.81 along the last axis, y in 2-D, z in 3-D)",
+             simulate_stage),
+      number("fluid.dx", "", "m", 0, inf, "initial point spacing of the fluid", simulate_stage,
+             true),
+
+      // [[fluid.region]]
+      vector("fluid.region[].origin", "", "m", 0, "lowest corner of the fluid box", simulate_stage),
+      vector("fluid.region[].size", "", "m", 0, "edge lengths of the fluid box", simulate_stage,
+             0.0),
+      vector("fluid.region[].velocity", "[]", "m/s", 0, "initial velocity (default: at rest)",
+             simulate_stage),
+
+      // [time]
+      number("time.end", "", "s", 0, inf, "simulated end time", simulate_stage, true),
+      number("time.dt_max", "1e-2", "s", 0, inf, "largest time step", simulate_stage, true),
+      number("time.snapshot_interval", "0.0", "s", 0, inf,
+             "physical time between snapshots of points and walls (0: first and last only)",
+             simulate_stage),
+      number("time.probe_interval", "0.0", "s", 0, inf,
+             "physical time between probe rows (0: every step); the end time always gets a row",
+             simulate_stage),
+      number("time.cfl", "0.3", "1", 0, 1, "Courant number C_u: Δt ≤ C_u·dx/max|u|", simulate_stage,
+             true),
+      number("time.acceleration_number", "0.25", "1", 0, 1, "C_a: Δt ≤ C_a·sqrt(dx/max|a|)",
+             simulate_stage, true),
+      number("time.viscous_number", "0.1", "1", 0, 1,
+             "C_ν: Δt ≤ C_ν·dx²/ν (explicit viscosity only)", simulate_stage, true),
+
+      // [solver]
+      text("solver.viscosity", "\"explicit\"", {"explicit", "implicit"},
+           "viscous term of the predictor: explicit Euler (adds the viscous Δt limit) or implicit "
+           "Euler (one sparse solve per component)",
+           simulate_stage),
+      number("solver.support_factor", "2.5", "1", 1.5, 5,
+             "support radius h of the LDD operators in units of dx", simulate_stage),
+      integer("solver.pbd_iterations", "4", 0, 100,
+              "Jacobi iterations of the position-based regularisation (0 disables it)",
+              simulate_stage),
+      number("solver.pbd_relaxation", "1.5", "1", 0, 2, "relaxation ω of the PBD iteration",
+             simulate_stage, true),
+      number("solver.pbd_distance", "0.95", "1", 0, 1,
+             "PBD minimum pair distance d0 in units of dx (fluid–wall: d0/2)", simulate_stage,
+             true),
+      number("solver.smoothing", "0.5", "1", 0, 1,
+             "XSPH velocity smoothing ε over fluid neighbours (0 disables)", simulate_stage),
+      number("solver.volume_relaxation", "0.05", "1", 0, 1,
+             "relaxation α of the volume (number-density) source of the PPE (0 disables)",
+             simulate_stage),
+      boolean("solver.release_wall_tension", "true",
+              "wall nodes with negative pressure become p = 0 and the PPE is solved again",
+              simulate_stage),
+      number("solver.ppe_tolerance", "1e-6", "1", 0, 1,
+             "relative residual at which the PPE iteration stops", simulate_stage, true),
+      integer("solver.ppe_max_iterations", "1000", 1, 1000000,
+              "iterations of the PPE solver before the step counts as not converged",
+              simulate_stage),
+      text("solver.preconditioner", "\"automatic\"", {"automatic", "jacobi", "ilu"},
+           "PPE preconditioner: automatic (Jacobi first, ILU when it stalls), jacobi or ilu",
+           simulate_stage),
+
+      // [[probe]]
+      text("probe[].name", "", {},
+           "probe name, unique, letters, digits and _ (the CSV column prefix)", simulate_stage),
+      text("probe[].kind", "", {"pressure", "elevation", "front", "force"},
+           "pressure at a point, free-surface elevation at a gauge, surge front, or force on a "
+           "wall",
+           simulate_stage),
+      vector("probe[].position", "[]", "m", 0,
+             "pressure: the point; elevation: the gauge (its vertical line); required for those "
+             "kinds and inside the walls' bounding box",
+             simulate_stage),
+      number("probe[].radius", "0.0", "m", 0, inf,
+             "pressure: radius of the averaging sphere (0: h = support_factor·dx)", simulate_stage),
+      text("probe[].wall", "\"\"", {}, "force: name of the [[wall]] the pressure is integrated on",
+           simulate_stage),
+      vector("probe[].direction", "[]", "1", 0,
+             "front: direction the front advances in, normalised (default: +x)", simulate_stage),
+      vector("probe[].band", "[]", "m", 2,
+             "front: [low, high] height band above the floor (the lowest wall point) where the "
+             "front point is sought (default: [0, 2·dx])",
+             simulate_stage),
 
       // [modes]
       integer("modes.count", "10", 1, 100000,

@@ -227,8 +227,79 @@ const SchemaSpec& mapped_modes_schema() {
   return spec;
 }
 
+const SchemaSpec& results_schema() {
+  static const SchemaSpec spec{
+      schema::results,
+      1,
+      "A simulation run of fsi-simulate: the probe series (also in probes.csv), the monitors of "
+      "every time step and the run's totals. Root attributes: run_status (completed | diverged), "
+      "divergence_report (the report text of a diverged run, else empty), wall_seconds, steps, "
+      "points (fluid points at the start), end_time [s], snapshots, dx [m], support (h) [m], "
+      "probe_columns (the names of the columns of /probes/values as in the CSV header, "
+      "comma-separated), dt_limit_names (the names of the /monitors/dt_limit codes in code order: "
+      "cfl, viscous, acceleration, maximum, output) and phase_names (the entries of "
+      "/run/phase_seconds). A diverged run has status \"diverged: ...\" (so --if-stale reruns "
+      "it).",
+      {
+          optional({ds::probe_time, DType::f64, {"n_probe_rows"}, "s", "times of the probe rows"}),
+          optional({ds::probe_values,
+                    DType::f64,
+                    {"n_probe_rows", "n_probe_columns"},
+                    "column",
+                    "probe values, one row per probe time, one column per name of the "
+                    "probe_columns attribute (its unit in brackets: Pa, m or N)"}),
+          {ds::monitor_step, DType::i64, {"n_steps"}, "", "step number, from 1"},
+          {ds::monitor_time, DType::f64, {"n_steps"}, "s", "time at the end of the step"},
+          {ds::monitor_dt, DType::f64, {"n_steps"}, "s", "time step"},
+          {ds::monitor_dt_limit,
+           DType::i64,
+           {"n_steps"},
+           "",
+           "what set the step: 0 cfl, 1 viscous, 2 acceleration, 3 maximum (dt_max), 4 output "
+           "(a snapshot, probe or end time)"},
+          {ds::monitor_ppe_iterations, DType::i64, {"n_steps"}, "", "PPE solver iterations"},
+          {ds::monitor_ppe_passes,
+           DType::i64,
+           {"n_steps"},
+           "",
+           "PPE solves (1 + re-solves after releasing wall tension)"},
+          {ds::monitor_ppe_residual,
+           DType::f64,
+           {"n_steps"},
+           "1",
+           "relative residual of the last PPE solve"},
+          {ds::monitor_ppe_converged, DType::i64, {"n_steps"}, "", "1 if the PPE converged"},
+          {ds::monitor_max_divergence,
+           DType::f64,
+           {"n_steps"},
+           "1/s",
+           "max |div u| over interior fluid points after the step"},
+          {ds::monitor_volume_drift,
+           DType::f64,
+           {"n_steps"},
+           "1",
+           "V/V0 - 1 from the mean interior number density"},
+          {ds::monitor_max_speed, DType::f64, {"n_steps"}, "m/s", "max |u| of fluid points"},
+          {ds::monitor_escaped,
+           DType::i64,
+           {"n_steps"},
+           "",
+           "fluid points removed so far (left the walls' bounding box)"},
+          {ds::monitor_fluid, DType::i64, {"n_steps"}, "", "fluid points"},
+          {ds::monitor_surface, DType::i64, {"n_steps"}, "", "free-surface fluid points"},
+          {ds::monitor_isolated, DType::i64, {"n_steps"}, "", "isolated (ballistic) points"},
+          {ds::monitor_wall_active, DType::i64, {"n_steps"}, "", "active wall nodes"},
+          {ds::run_phase_seconds,
+           DType::f64,
+           {"n_phases"},
+           "s",
+           "wall-clock time per phase of the step summed over the run (names: phase_names)"},
+      }};
+  return spec;
+}
+
 std::vector<const SchemaSpec*> all_schemas() {
-  return {&mesh_schema(), &modes_schema(), &mapped_modes_schema()};
+  return {&mesh_schema(), &modes_schema(), &mapped_modes_schema(), &results_schema()};
 }
 
 const SchemaSpec* find_schema(std::string_view name) {

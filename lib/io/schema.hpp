@@ -94,11 +94,48 @@ inline constexpr const char* target_vertices = "/target/vertices";
 inline constexpr const char* target_cells = "/target/cells";
 inline constexpr const char* mapped_shapes = "/modes/shapes";  // on the target vertices
 inline constexpr const char* mapping_field_error = "/quality/field_error";
+// hydromodal.results (groups: /probes, /monitors, /run; issue 7 adds /modal, /bodies)
+inline constexpr const char* probe_time = "/probes/time";
+inline constexpr const char* probe_values = "/probes/values";
+inline constexpr const char* monitor_step = "/monitors/step";
+inline constexpr const char* monitor_time = "/monitors/time";
+inline constexpr const char* monitor_dt = "/monitors/dt";
+inline constexpr const char* monitor_dt_limit = "/monitors/dt_limit";
+inline constexpr const char* monitor_ppe_iterations = "/monitors/ppe_iterations";
+inline constexpr const char* monitor_ppe_passes = "/monitors/ppe_passes";
+inline constexpr const char* monitor_ppe_residual = "/monitors/ppe_residual";
+inline constexpr const char* monitor_ppe_converged = "/monitors/ppe_converged";
+inline constexpr const char* monitor_max_divergence = "/monitors/max_divergence";
+inline constexpr const char* monitor_volume_drift = "/monitors/volume_drift";
+inline constexpr const char* monitor_max_speed = "/monitors/max_speed";
+inline constexpr const char* monitor_escaped = "/monitors/escaped";
+inline constexpr const char* monitor_fluid = "/monitors/fluid";
+inline constexpr const char* monitor_surface = "/monitors/surface";
+inline constexpr const char* monitor_isolated = "/monitors/isolated";
+inline constexpr const char* monitor_wall_active = "/monitors/wall_active";
+inline constexpr const char* run_phase_seconds = "/run/phase_seconds";
 }  // namespace ds
+
+/// Root attributes of hydromodal.results (besides the provenance ones).
+namespace results_attr {
+inline constexpr const char* run_status = "run_status";  ///< "completed" or "diverged"
+inline constexpr const char* divergence_report = "divergence_report";  ///< "" when completed
+inline constexpr const char* wall_seconds = "wall_seconds";            ///< run time [s]
+inline constexpr const char* steps = "steps";                          ///< time steps taken
+inline constexpr const char* points = "points";                  ///< fluid points at the start
+inline constexpr const char* end_time = "end_time";              ///< physical time reached [s]
+inline constexpr const char* snapshots = "snapshots";            ///< snapshots written
+inline constexpr const char* probe_columns = "probe_columns";    ///< CSV names, comma-separated
+inline constexpr const char* dt_limit_names = "dt_limit_names";  ///< code → name, comma-separated
+inline constexpr const char* phase_names = "phase_names";        ///< /run/phase_seconds entries
+inline constexpr const char* dx = "dx";                          ///< [m]
+inline constexpr const char* support = "support";                ///< h [m]
+}  // namespace results_attr
 
 const SchemaSpec& mesh_schema();
 const SchemaSpec& modes_schema();
 const SchemaSpec& mapped_modes_schema();
+const SchemaSpec& results_schema();
 /// Every schema hydromodal writes (for fsi-inspect and the generated reference).
 std::vector<const SchemaSpec*> all_schemas();
 const SchemaSpec* find_schema(std::string_view name);

@@ -218,7 +218,7 @@ StepMonitor FlowSolver<D>::step(double dt) {
   const std::vector<Vec<D>> old_velocity = points_.velocity;
   advect(dt);
   lap(t, m.seconds.advect);
-  regularise_positions();
+  regularise_positions(dt);
   lap(t, m.seconds.pbd);
   if (options_.resort_interval > 0 && (step_ + 1) % options_.resort_interval == 0) {
     remove_escaped_points();
@@ -277,6 +277,14 @@ void FlowSolver<D>::advect(double dt) {
 }
 
 template <int D>
+double FlowSolver<D>::typical_step() const {
+  const double g = options_.gravity.norm();
+  // Without gravity: the CFL step at 1 m/s.
+  return g > 0.0 ? options_.acceleration_number * std::sqrt(options_.dx / g)
+                 : options_.cfl * options_.dx;
+}
+
+template <int D>
 void FlowSolver<D>::keep_clear_of_walls(bool all_points) {
   const double clearance = 0.5 * options_.pbd_distance * options_.dx;
   const Index n = points_.size();
@@ -313,14 +321,21 @@ void FlowSolver<D>::keep_clear_of_walls(bool all_points) {
 }
 
 template <int D>
-void FlowSolver<D>::regularise_positions() {
+void FlowSolver<D>::regularise_positions(double dt) {
   const auto& o = options_;
   if (o.pbd_iterations == 0 || neighbours_.points() != points_.size()) return;
   // The neighbour lists of the last step (radius h at the old positions) hold every pair that
   // can now be closer than d0: points moved at most C_u·dx since, and PBD moves them at most
   // n_pbd · clamp.
   const Index n = points_.size();
-  const double d0 = o.pbd_distance * o.dx, d0_wall = 0.5 * d0, clamp = o.pbd_clamp * o.dx;
+  // The shift per iteration is bounded by pbd_clamp·dx for a step of the typical length τ (the
+  // acceleration limit under gravity) and proportionally less for shorter steps, so that points
+  // are regularised at a rate in time [CHOICE]: with a fixed bound, the steps cut short before
+  // an output time moved points by 0.4 dx in a sliver of time, the PPE turned the divergence of
+  // that shift into (ρ/Δt)-sized pressures, and the K&O dam break at L/40 blew up at the wall
+  // impact (T = 3.14; 200 m/s).
+  const double d0 = o.pbd_distance * o.dx, d0_wall = 0.5 * d0;
+  const double clamp = o.pbd_clamp * o.dx * std::min(1.0, dt / typical_step());
   std::vector<Vec<D>> shift(static_cast<std::size_t>(n), Vec<D>::Zero());
   std::vector<Vec<D>> total(static_cast<std::size_t>(n), Vec<D>::Zero());
   for (int it = 0; it < o.pbd_iterations; ++it) {
@@ -384,18 +399,32 @@ void FlowSolver<D>::classify_points() {
 
 template <int D>
 void FlowSolver<D>::mark_sparse_points_as_surface() {
-  // A fluid point whose number density (fluid and wall neighbours) is far below the lattice's
-  // is in spray or a film a few points thick, even where the cone test finds neighbours all
-  // around (the middle of a droplet): its Laplacian row rests on a handful of points. Measured:
-  // the K&O dam break at L/80 blew up at t√(2g/L) = 2.1 from interior rows with 6–11
-  // neighbours (p → 10⁸ Pa). Such points are Dirichlet [CHOICE].
-  const double limit = options_.sparse_density * n0_;
+  // A fluid point whose number density is far below the lattice's is in spray or a film a few
+  // points thick, even where the cone test finds neighbours all around (the middle of a droplet,
+  // a film along a wall, a jet going round the open end of a wall): its Laplacian row rests on
+  // a handful of points and can make the PPE nearly singular. Measured: the K&O dam break at
+  // L/80 blew up at T = 2.1 from interior rows with 6–11 neighbours (p → 10⁸ Pa); at L/40 the
+  // run-up jet passing the top end of the right wall gave an interior row with 2 fluid and 4
+  // wall neighbours (total density 1.27 n0) and 5·10⁸ m/s one step later. Such points are
+  // Dirichlet [CHOICE]: total density (fluid and wall) below sparse_density·n0, or fluid-only
+  // density below half of that (a half space next to a flat wall has ≈ 0.55 n0 of fluid).
+  const double total_limit = options_.sparse_density * n0_;
+  const double fluid_limit = 0.5 * total_limit;
+  const double h = support();
   const Index n = points_.size();
 #pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i)
-    if (is_fluid(points_, i) && points_.type[i] == PointType::interior &&
-        ops_.number_density[i] < limit)
-      points_.type[i] = PointType::surface;
+  for (Index i = 0; i < n; ++i) {
+    if (!is_fluid(points_, i) || points_.type[i] != PointType::interior) continue;
+    bool sparse = ops_.number_density[i] < total_limit;
+    if (!sparse) {
+      double fluid_density = 0.0;
+      for (Index j : neighbours_.of(i))
+        if (is_fluid(points_, j))
+          fluid_density += wendland_c2((points_.position[j] - points_.position[i]).norm() / h);
+      sparse = fluid_density < fluid_limit;
+    }
+    if (sparse) points_.type[i] = PointType::surface;
+  }
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -76,7 +76,7 @@ struct FlowOptions {
   /// Interior points with a number density below this fraction of the lattice's n0 are made
   /// Dirichlet (spray, films); 0 disables.
   double sparse_density = 0.6;
-  OperatorOptions operators;
+  OperatorOptions operators{.min_dominance = 0.3};
   FreeSurfaceOptions free_surface;  ///< reference_density is set by the solver
   SolverOptions ppe;
   // Time step (§1.11)
@@ -176,7 +176,8 @@ class FlowSolver {
  private:
   void advect(double dt);
   void keep_clear_of_walls(bool all_points);
-  void regularise_positions();
+  void regularise_positions(double dt);
+  double typical_step() const;
   void rebuild_neighbours();
   void classify_points();
   void mark_sparse_points_as_surface();

@@ -75,6 +75,32 @@ bool offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Ind
   return negative;
 }
 
+/// Eq. 7 with the modified weights clamped at zero and D_i recomputed (§1.7.2 option b): every
+/// c_ij ≥ 0, so the row is diagonally dominant, at first-order accuracy.
+template <int D>
+void clamped_offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i,
+                              double h, const Vec<D>& Bo, double* c) {
+  double denominator = 0.0;
+  for (std::size_t k = 0; k < nbr.size(); ++k) {
+    const Vec<D> r = x[nbr[k]] - x[i];
+    const double w = std::max(0.0, wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo)));
+    c[k] = w;
+    denominator += w * r.squaredNorm();
+  }
+  const double scale = denominator > 0.0 ? 2.0 * D / denominator : 0.0;
+  for (std::size_t k = 0; k < nbr.size(); ++k) c[k] *= scale;
+}
+
+/// Diagonal dominance of a Laplacian row: |Σ c_ij| / Σ |c_ij| (1 when every c_ij ≥ 0).
+double dominance(const double* c, std::size_t n) {
+  double sum = 0.0, absolute = 0.0;
+  for (std::size_t k = 0; k < n; ++k) {
+    sum += c[k];
+    absolute += std::abs(c[k]);
+  }
+  return absolute > 0.0 ? std::abs(sum) / absolute : 1.0;
+}
+
 }  // namespace
 
 template <int D>
@@ -133,6 +159,16 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
                           (opt.laplacian == LaplacianScheme::wls_where_needed &&
                            ((flags & op_negative) || ops.offset_ratio[i] > opt.one_sided_offset));
     if (want_wls && wls_laplacian<D>(x, nbr, i, h, c)) flags |= op_wls;
+    // A row whose diagonal −Σc_ij is small against Σ|c_ij| (eq. 7 with D_i ≤ 0, a WLS fit on a
+    // lopsided stencil, or eq. 7 with negative weights where the WLS fit failed) can make the
+    // PPE locally near-singular: the K&O dam break at L/40 reached 10⁸ Pa and blew up from such
+    // rows after the impact. Those rows take the clamped eq. 7 [CHOICE].
+    const bool weak = opt.min_dominance > 0.0 && (dominance(c, nbr.size()) < opt.min_dominance ||
+                                                  ((flags & op_negative) && !(flags & op_wls)));
+    if (weak && !nbr.empty()) {
+      clamped_offset_laplacian<D>(x, nbr, i, h, ops.renormalisation[i] * o, c);
+      flags = static_cast<std::uint8_t>((flags & ~op_wls) | op_clamped);
+    }
     ops.flags[i] = flags;
   }
   return ops;

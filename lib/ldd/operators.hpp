@@ -35,6 +35,9 @@ struct OperatorOptions {
   /// that the second layer under a surface is caught too.
   double one_sided_offset = 0.12;
   LaplacianScheme laplacian = LaplacianScheme::wls_where_needed;
+  /// Rows with |Σc_ij| / Σ|c_ij| below this (weak diagonal), and eq. 7 rows with negative
+  /// weights whose WLS fit failed, take the clamped eq. 7; 0 disables (the flow solver uses 0.3).
+  double min_dominance = 0.0;
 };
 
 /// Flags of a point's operators (bit set).
@@ -43,6 +46,7 @@ enum OperatorFlag : std::uint8_t {
   op_degenerate = 2,  ///< λ_min(M_i) < λ_c: Tikhonov-regularised B_i
   op_wls = 4,         ///< Laplacian row from the second-order WLS fit
   op_negative = 8,    ///< eq. 7 had a negative weight on this stencil
+  op_clamped = 16,    ///< Laplacian row from eq. 7 with weights clamped at 0 (weak diagonal)
 };
 
 template <int D>

@@ -229,9 +229,64 @@ void WallMesh<D>::compute_normals() {
   }
   for (auto& vn : vertex_normal_)
     if (vn.squaredNorm() > 0) vn.normalize();
+  mark_open_features();
   edge_normal_.clear();
   for (auto& [k, en] : edges)
     edge_normal_.emplace_back(k, en.squaredNorm() > 0 ? en.normalized() : en);
+}
+
+/// How many elements use each boundary entity: vertices of segments (2-D), edges of triangles
+/// (3-D, keyed by edge_key). A closed wall uses every one exactly twice.
+template <int D>
+std::map<std::uint64_t, int> boundary_uses(const std::vector<std::array<Index, D>>& cells) {
+  std::map<std::uint64_t, int> uses;
+  for (const auto& c : cells) {
+    if constexpr (D == 2) {
+      for (int k = 0; k < 2; ++k) ++uses[static_cast<std::uint64_t>(c[k])];
+    } else {
+      for (int k = 0; k < 3; ++k) ++uses[edge_key(c[k], c[(k + 1) % 3])];
+    }
+  }
+  return uses;
+}
+
+template <int D>
+void WallMesh<D>::mark_open_features() {
+  // Open ends of the mesh: vertices used by one segment (2-D); edges used by one triangle and
+  // their vertices (3-D).
+  open_vertex_.assign(x_.size(), 0);
+  open_edges_.clear();
+  for (const auto& [key, uses] : boundary_uses<D>(cells_)) {
+    if (uses != 1) continue;
+    if constexpr (D == 2) {
+      open_vertex_[static_cast<std::size_t>(key)] = 1;
+    } else {
+      open_edges_.push_back(key);
+      open_vertex_[key >> 32] = open_vertex_[key & 0xffffffffu] = 1;
+    }
+  }
+  std::sort(open_edges_.begin(), open_edges_.end());
+}
+
+template <int D>
+bool WallMesh<D>::on_open_end(Index e, const Vec<D>& b) const {
+  int zeros = 0, nonzero = -1;
+  for (int k = 0; k < D; ++k) {
+    if (b[k] == 0.0)
+      ++zeros;
+    else
+      nonzero = k;
+  }
+  if (zeros == D - 1) return open_vertex_[cells_[e][nonzero]] != 0;
+  if constexpr (D == 3) {
+    if (zeros == 1) {
+      int z = 0;
+      while (b[z] != 0.0) ++z;
+      const auto key = edge_key(cells_[e][(z + 1) % 3], cells_[e][(z + 2) % 3]);
+      return std::binary_search(open_edges_.begin(), open_edges_.end(), key);
+    }
+  }
+  return false;
 }
 
 template <int D>
@@ -341,6 +396,15 @@ ClosestPoint<D> WallMesh<D>::closest(const Vec<D>& x) const {
   }
   best.normal = normal_at(best.element, best.barycentric);
   const double d = std::sqrt(best2);
+  if (d > 0.0 && on_open_end(best.element, best.barycentric)) {
+    // Beyond the open end of a wall (the top of a tank side, the tip of a baffle) there is no
+    // inside: the distance is unsigned and the normal points at x. With the pseudo-normal, a
+    // point going round the top of a tank wall was "inside" and teleported back across it
+    // (the K&O run-up jet at L/40 blew up there).
+    best.normal = (x - best.point) / d;
+    best.signed_distance = d;
+    return best;
+  }
   best.signed_distance = (x - best.point).dot(best.normal) < 0.0 ? -d : d;
   return best;
 }
@@ -369,21 +433,6 @@ bool WallMesh<D>::crosses(const Vec<D>& a, const Vec<D>& b) const {
     }
   }
   return false;
-}
-
-/// How many elements use each boundary entity: vertices of segments (2-D), edges of triangles
-/// (3-D, keyed by edge_key). A closed wall uses every one exactly twice.
-template <int D>
-std::map<std::uint64_t, int> boundary_uses(const std::vector<std::array<Index, D>>& cells) {
-  std::map<std::uint64_t, int> uses;
-  for (const auto& c : cells) {
-    if constexpr (D == 2) {
-      for (int k = 0; k < 2; ++k) ++uses[static_cast<std::uint64_t>(c[k])];
-    } else {
-      for (int k = 0; k < 3; ++k) ++uses[edge_key(c[k], c[(k + 1) % 3])];
-    }
-  }
-  return uses;
 }
 
 template <int D>

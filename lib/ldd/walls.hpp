@@ -3,7 +3,8 @@
 // (mesh::SurfaceMesh convention: triangle (a,b,c) → (b−a)×(c−a); segment (a,b) → ẑ×(b−a)).
 // An AABB tree (own, median split, refit in O(n) when the mesh moves) answers closest point,
 // signed distance (sign from the angle-weighted pseudo-normal of the closest feature: face, edge
-// or vertex; positive on the fluid side) and segment crossing. Wall nodes (CHOICE-B, §0.2) are
+// or vertex; positive on the fluid side; unsigned beyond an open end of the mesh, where there is
+// no inside) and segment crossing. Wall nodes (CHOICE-B, §0.2) are
 // sampled on the elements at spacing ≤ dx and follow the mesh through their barycentrics.
 #include <array>
 #include <memory>
@@ -69,12 +70,16 @@ class WallMesh {
  private:
   struct Tree;
   void compute_normals();
+  void mark_open_features();
+  bool on_open_end(Index e, const Vec<D>& barycentric) const;
   std::string name_;
   bool thin_ = false;
   std::vector<Vec<D>> x_, v_, a_;
   std::vector<std::array<Index, D>> cells_;
   std::vector<Vec<D>> face_normal_, vertex_normal_;
   std::vector<std::pair<std::uint64_t, Vec<D>>> edge_normal_;  // 3-D: sorted by edge key
+  std::vector<std::uint8_t> open_vertex_;                      // vertex on an open end
+  std::vector<std::uint64_t> open_edges_;                      // 3-D: open edges, sorted
   std::unique_ptr<Tree> tree_;
 };
 

@@ -1,20 +1,62 @@
-// fsi-simulate — Run the coupled LDD flow + modal structure simulation. Not available in this
-// version: its command line and scene validation exist so that pipelines and scripts can be written
-// against them.
+// fsi-simulate SCENE --mesh mesh.h5 [--mapped mapped.h5] -o out/<case>/<variant>/results.h5 —
+// the LDD free-surface flow with rigid walls (fixed or in prescribed motion); probes.csv and
+// snapshots/ are written next to results.h5. Flexible bodies (--mapped) come with the modal
+// coupling. The scene-stage shape of stage_main (echo, --validate, --if-stale), with optional
+// inputs: without --mesh the walls are meshed from the scene (fsi-mesh needs a [structure]).
+#include "driver/simulate_stage.hpp"
+#include "io/artefact.hpp"
 #include "stage_main.hpp"
+
+namespace {
+
+constexpr const char* name = "fsi-simulate";
+
+void simulate(const hm::stages::StageArgs& args) {
+  const hm::io::Scene scene = hm::io::Scene::load(args.positional);
+  spdlog::info("{}: resolved parameters of {}:\n{}", name, args.positional,
+               scene.parameters_for(name));
+  if (args.validate) {
+    hm::driver::validate_simulate_scene(scene);
+    spdlog::info("{}: {} is valid for this stage", name, args.positional);
+    return;
+  }
+  if (args.output.empty())
+    throw hm::UsageError(std::string(name) + ": -o/--output FILE is required");
+  std::map<std::string, std::string> given;
+  for (const auto& [input, path] : args.inputs)
+    if (!path.empty()) given.emplace(input, path);
+  if (args.flags.at("if-stale")) {
+    const std::string reason = hm::io::staleness(
+        args.output, name, hm::driver::simulate_parameters(scene, args.inputs.at("mesh").empty()),
+        given);
+    if (reason.empty()) {
+      spdlog::info("{}: {} is up to date", name, args.output);
+      return;
+    }
+    spdlog::info("{}: (re)making {}: {}", name, args.output, reason);
+  }
+  hm::driver::run_simulate_stage(
+      scene, {.mesh = args.inputs.at("mesh"), .mapped = args.inputs.at("mapped")}, args.output);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   const hm::stages::StageInfo info{
-      .name = "fsi-simulate",
+      .name = name,
       .summary =
-          "Run the coupled LDD flow + modal structure simulation (not available in this version).",
-      .inputs = {{"mapped", "mapped-modes artefact written by fsi-map"}},
+          "Run the LDD free-surface flow with rigid walls (fixed or in prescribed motion): "
+          "results.h5 (hydromodal.results), probes.csv and snapshots/ next to it.",
+      .inputs = {{"mesh",
+                  "mesh artefact written by fsi-mesh (the walls); without it the [[wall]]s are "
+                  "meshed from the scene as fsi-mesh would (rigid-only scenes)"},
+                 {"mapped",
+                  "mapped-modes artefact written by fsi-map (optional; flexible "
+                  "bodies come in a later version)"}},
+      .flags = {{"if-stale",
+                 "run only if the output is missing or stale: written by another tool version, "
+                 "with other scene parameters, or from inputs whose content changed (content "
+                 "hashes decide, not timestamps)"}},
   };
-  return hm::stages::run_scene_stage(
-      argc, argv, info,
-      {.validate = [](const hm::io::Scene&) {},
-       .run =
-           [](const hm::io::Scene&, const auto&, const std::string&) {
-             throw hm::UsageError("fsi-simulate is not available in this version of hydromodal");
-           }});
+  return hm::stages::run_stage(argc, argv, info, simulate);
 }

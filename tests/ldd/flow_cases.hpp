@@ -78,13 +78,13 @@ std::pair<double, double> surface_height(const PointSet<D>& p, double dx, const 
 namespace hm::ldd::test {
 
 /// Koshizuka & Oka (1996) dam break: a water column L × 2L (L = 0.146 m) at the left wall of a
-/// tank 4L long (3L high), dry floor, at resolution dx = L / resolution.
+/// tank 4L long (4L high), dry floor, at resolution dx = L / resolution.
 struct KoshizukaOka {
   static constexpr double L = 0.146;  ///< column width [m]
   static FlowSolver<2> flow(int resolution, FlowOptions<2> options = {}) {
     const double dx = L / resolution;
     const Box<2> fluid{Vec<2>::Zero(), Vec<2>(L, 2 * L)};
-    return water_in_tank<2>(Vec<2>(4 * L, 3 * L), fluid, dx, options);
+    return water_in_tank<2>(Vec<2>(4 * L, 4 * L), fluid, dx, options);
   }
   /// T = t√(2g/L)
   static double time_scale() { return std::sqrt(2 * 9.81 / L); }

@@ -1,0 +1,41 @@
+#pragma once
+// The probes of a run ([[probe]] of the scene): what each measures, its CSV column names, and
+// one row of values from the current flow state (lib/ldd/probes.hpp does the measuring).
+//   pressure  → `<name>.p [Pa]`    averaged over a sphere of `radius` around `position`
+//   elevation → `<name>.eta [m]`   free-surface height (absolute) on the vertical at `position`
+//   front     → `<name>.front [m]` furthest fluid point along `direction` with a height in
+//                                  [band_low, band_high] (absolute heights)
+//   force     → `<name>.fx [N]`, `.fy [N]` (, `.fz [N]`) pressure force on wall `wall`
+//                (2-D: per metre of width, N/m)
+// A dry pressure probe or gauge and an empty front band read 0.
+#include <span>
+#include <string>
+#include <vector>
+
+#include "ldd/flow.hpp"
+
+namespace hm::coupling {
+
+enum class ProbeKind { pressure, elevation, front, force };
+
+template <int D>
+struct Probe {
+  std::string name;
+  ProbeKind kind = ProbeKind::pressure;
+  ldd::Vec<D> position = ldd::Vec<D>::Zero();    ///< pressure point / gauge position [m]
+  double radius = 0.0;                           ///< pressure averaging radius [m], > 0
+  int wall = -1;                                 ///< force: index into the solver's walls
+  ldd::Vec<D> direction = ldd::Vec<D>::UnitX();  ///< front: unit direction
+  double band_low = 0.0, band_high = 0.0;        ///< front: absolute heights [m]
+};
+
+/// CSV column names of the probes in order (without the time column).
+template <int D>
+std::vector<std::string> probe_columns(std::span<const Probe<D>> probes);
+
+/// One value per column of probe_columns, from the solver's current state.
+template <int D>
+std::vector<double> evaluate_probes(const ldd::FlowSolver<D>& solver,
+                                    std::span<const Probe<D>> probes);
+
+}  // namespace hm::coupling

@@ -1,0 +1,411 @@
+#include "driver/flow_setup.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/errors.hpp"
+#include "core/text.hpp"
+#include "driver/wall_io.hpp"
+#include "ldd/seeding.hpp"
+#include "mesh/wall_mesher.hpp"
+#include "motion/time_table.hpp"
+
+namespace hm::driver {
+namespace {
+
+using io::SceneView;
+
+Eigen::Vector3d as_3d(const Eigen::VectorXd& v) {
+  Eigen::Vector3d out = Eigen::Vector3d::Zero();
+  for (Eigen::Index a = 0; a < std::min<Eigen::Index>(3, v.size()); ++a) out[a] = v[a];
+  return out;
+}
+
+/// A direction key: the given vector normalised, or `fallback` when it is empty ("[]").
+Eigen::Vector3d direction_key(const SceneView& view, const std::string& key,
+                              const Eigen::Vector3d& fallback) {
+  const Eigen::VectorXd v = view.vector(key);
+  if (v.size() == 0) return fallback;
+  if (!(v.norm() > 0.0))
+    input_error("{} = [{}] is a zero vector; a direction needs a non-zero length", view.where(key),
+                fmt::join(v, ", "));
+  return as_3d(v).normalized();
+}
+
+bool has_theta_column(const motion::TimeTable& table) {
+  return std::any_of(table.columns.begin(), table.columns.end(),
+                     [](const std::string& c) { return c.rfind("theta", 0) == 0; });
+}
+
+Eigen::Vector3d roll_axis(const SceneView& wall, int dim) {
+  if (dim == 2) {
+    if (wall.vector("roll_axis").size() != 0)
+      input_error("{}: a 2-D case always rolls about z; remove roll_axis (3-D only)",
+                  wall.where("roll_axis"));
+    return Eigen::Vector3d::UnitZ();
+  }
+  return direction_key(wall, "roll_axis", Eigen::Vector3d::UnitZ());
+}
+
+Eigen::Vector3d roll_pivot(const SceneView& wall, const std::string& why) {
+  const Eigen::VectorXd pivot = wall.vector("roll_pivot");
+  if (pivot.size() == 0)
+    input_error("{}: {} needs roll_pivot (m), the point the rotation axis passes through",
+                wall.where("motion"), why);
+  return as_3d(pivot);
+}
+
+/// Motion keys that are set although the wall's motion does not use them.
+void reject_unused_motion_keys(const SceneView& wall, const std::string& kind) {
+  const std::vector<std::pair<std::string, std::string>> owners{{"sway_amplitude", "sway"},
+                                                                {"sway_period", "sway"},
+                                                                {"roll_amplitude", "roll"},
+                                                                {"roll_frequency", "roll"},
+                                                                {"motion_table", "table"}};
+  for (const auto& [key, owner] : owners) {
+    if (owner == kind) continue;
+    const bool set = key == "motion_table" ? !wall.string(key).empty() : wall.number(key) != 0.0;
+    if (set)
+      input_error("{} is given but {} = \"{}\": set motion = \"{}\" or remove the key",
+                  wall.where(key), wall.full("motion"), kind, owner);
+  }
+}
+
+/// The prescribed motion of a [[wall]] (empty for motion = "none"); `table_file` receives the
+/// CSV file of a table motion.
+std::optional<motion::RigidMotion> wall_motion(const SceneView& wall, int dim,
+                                               std::filesystem::path* table_file = nullptr) {
+  const std::string kind = wall.string("motion");
+  reject_unused_motion_keys(wall, kind);
+  const double ramp = wall.number("motion_ramp");
+  if (kind == "none") return std::nullopt;
+  if (kind == "sway") {
+    const double amplitude = wall.number("sway_amplitude"), period = wall.number("sway_period");
+    if (amplitude == 0.0 || period == 0.0)
+      input_error(
+          "{}: motion = \"sway\" needs sway_amplitude (m) and sway_period (s), both > 0 "
+          "(given: {} m, {} s)",
+          wall.where("motion"), amplitude, period);
+    const Eigen::Vector3d direction =
+        direction_key(wall, "sway_direction", Eigen::Vector3d::UnitX());
+    return motion::sway_motion(dim, direction, amplitude, period, ramp);
+  }
+  if (kind == "roll") {
+    const double amplitude = wall.number("roll_amplitude"),
+                 frequency = wall.number("roll_frequency");
+    if (amplitude == 0.0 || frequency == 0.0)
+      input_error(
+          "{}: motion = \"roll\" needs roll_amplitude (rad) and roll_frequency (Hz), both "
+          "> 0 (given: {} rad, {} Hz)",
+          wall.where("motion"), amplitude, frequency);
+    return motion::roll_motion(dim, roll_pivot(wall, "motion = \"roll\""), roll_axis(wall, dim),
+                               amplitude, frequency, ramp);
+  }
+  HM_ASSERT(kind == "table", "unknown motion '{}'", kind);
+  if (wall.string("motion_table").empty())
+    input_error(
+        "{}: motion = \"table\" needs motion_table, a CSV file (t [s], x [m], y [m], "
+        "z [m], theta [rad|deg]) relative to the scene",
+        wall.where("motion"));
+  const std::filesystem::path file = wall.file_path("motion_table");
+  const motion::TimeTable table = motion::read_time_table(file);
+  if (table_file) *table_file = file;
+  const Eigen::Vector3d pivot = has_theta_column(table)
+                                    ? roll_pivot(wall, "a motion_table with a theta column")
+                                    : Eigen::Vector3d::Zero();
+  return motion::table_motion(table, dim, pivot, roll_axis(wall, dim));
+}
+
+bool valid_probe_name(const std::string& name) {
+  return !name.empty() && std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+std::vector<std::string> scene_wall_names(const io::Scene& scene) {
+  std::vector<std::string> names;
+  for (const SceneView& wall : scene.array("wall")) names.push_back(wall.string("name"));
+  return names;
+}
+
+void validate_probe(const SceneView& probe, const std::vector<std::string>& walls) {
+  const std::string kind = probe.string("kind");
+  if ((kind == "pressure" || kind == "elevation") && probe.vector("position").size() == 0)
+    input_error("{}: a {} probe needs position (m)", probe.where("kind"), kind);
+  if (kind == "force") {
+    const std::string wall = probe.string("wall");
+    if (wall.empty())
+      input_error("{}: a force probe needs wall, the name of a [[wall]] (walls: {})",
+                  probe.where("kind"), fmt::join(walls, ", "));
+    if (std::find(walls.begin(), walls.end(), wall) == walls.end()) {
+      const std::string guess = closest_match(wall, walls);
+      input_error("{} = \"{}\" is not a wall of the scene: expected one of {}{}",
+                  probe.where("wall"), wall, fmt::join(walls, ", "),
+                  guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess));
+    }
+  }
+  if (kind == "front") {
+    direction_key(probe, "direction", Eigen::Vector3d::UnitX());
+    const Eigen::VectorXd band = probe.vector("band");
+    if (band.size() == 2 && !(band[0] < band[1]))
+      input_error("{} = [{}, {}]: the band needs low < high (m above the floor)",
+                  probe.where("band"), band[0], band[1]);
+  }
+}
+
+void validate_probes(const io::Scene& scene) {
+  const std::vector<std::string> walls = scene_wall_names(scene);
+  std::set<std::string> seen;
+  for (const SceneView& probe : scene.array("probe")) {
+    const std::string name = probe.string("name");
+    if (!valid_probe_name(name))
+      input_error(
+          "{} = \"{}\": a probe name is letters, digits and _ only (it prefixes the CSV "
+          "columns)",
+          probe.where("name"), name);
+    if (!seen.insert(name).second)
+      input_error("{} = \"{}\": another probe has this name; probe names must be unique",
+                  probe.where("name"), name);
+    validate_probe(probe, walls);
+  }
+}
+
+template <int D>
+ldd::Vec<D> vec_of(const Eigen::VectorXd& v) {
+  HM_ASSERT(v.size() == D, "vector of {} values for a {}-D case", v.size(), D);
+  return v;
+}
+
+template <int D>
+ldd::FlowOptions<D> flow_options(const io::Scene& scene) {
+  ldd::FlowOptions<D> o;
+  const SceneView fluid = scene.section("fluid"), time = scene.section("time"),
+                  solver = scene.section("solver");
+  o.density = fluid.number("density");
+  o.viscosity = fluid.number("viscosity");
+  const Eigen::VectorXd g = fluid.vector("gravity");
+  o.gravity = g.size() == 0 ? default_gravity<D>() : vec_of<D>(g);
+  o.dx = fluid.number("dx");
+  o.support_factor = solver.number("support_factor");
+  o.viscous = solver.string("viscosity") == "implicit" ? ldd::ViscousScheme::implicit_euler
+                                                       : ldd::ViscousScheme::explicit_euler;
+  o.pbd_iterations = static_cast<int>(solver.integer("pbd_iterations"));
+  o.pbd_relaxation = solver.number("pbd_relaxation");
+  o.pbd_distance = solver.number("pbd_distance");
+  o.smoothing = solver.number("smoothing");
+  o.volume_relaxation = solver.number("volume_relaxation");
+  o.release_wall_tension = solver.boolean("release_wall_tension");
+  o.ppe.tolerance = solver.number("ppe_tolerance");
+  o.ppe.max_iterations = static_cast<int>(solver.integer("ppe_max_iterations"));
+  const std::string pc = solver.string("preconditioner");
+  o.ppe.preconditioner = pc == "jacobi" ? ldd::Preconditioner::jacobi
+                         : pc == "ilu"  ? ldd::Preconditioner::ilu
+                                        : ldd::Preconditioner::automatic;
+  o.cfl = time.number("cfl");
+  o.acceleration_number = time.number("acceleration_number");
+  o.viscous_number = time.number("viscous_number");
+  o.dt_max = time.number("dt_max");
+  return o;
+}
+
+template <int D>
+bool inside(const ldd::Box<D>& box, const ldd::Vec<D>& x) {
+  const double tol = 1e-9 * (box.upper - box.lower).norm();
+  return ((x - box.lower).array() >= -tol).all() && ((box.upper - x).array() >= -tol).all();
+}
+
+/// Seeds every region; points of a region inside an earlier region are left out (the earlier
+/// region fills the overlap).
+template <int D>
+void seed_regions(const io::Scene& scene, FlowSetup<D>& setup) {
+  std::vector<ldd::Box<D>> seeded;
+  for (const SceneView& region : scene.array("fluid.region")) {
+    ldd::Box<D> box;
+    box.lower = vec_of<D>(region.vector("origin"));
+    box.upper = box.lower + vec_of<D>(region.vector("size"));
+    const Eigen::VectorXd u = region.vector("velocity");
+    const ldd::Vec<D> velocity = u.size() == 0 ? ldd::Vec<D>::Zero() : vec_of<D>(u);
+    std::vector<ldd::Vec<D>> points;
+    try {
+      points = ldd::seed_box<D>(box, setup.options.dx, setup.walls);
+    } catch (const InputError& e) {
+      input_error("{} (size {}): {}", region.where("origin"),
+                  fmt::format("[{}]", fmt::join(region.vector("size"), ", ")), e.what());
+    }
+    for (const auto& x : points) {
+      const bool covered = std::any_of(seeded.begin(), seeded.end(),
+                                       [&](const ldd::Box<D>& b) { return inside<D>(b, x); });
+      if (covered) continue;
+      setup.fluid.push_back(x);
+      setup.velocity.push_back(velocity);
+    }
+    seeded.push_back(box);
+  }
+}
+
+template <int D>
+std::vector<coupling::Probe<D>> make_probes(const io::Scene& scene, const FlowSetup<D>& setup) {
+  ldd::Vec<D> lower = setup.walls.front().lower(), upper = setup.walls.front().upper();
+  for (const auto& w : setup.walls) {
+    lower = lower.cwiseMin(w.lower());
+    upper = upper.cwiseMax(w.upper());
+  }
+  const double dx = setup.options.dx, h = setup.options.support_factor * dx;
+  std::vector<coupling::Probe<D>> probes;
+  for (const SceneView& view : scene.array("probe")) {
+    coupling::Probe<D> p;
+    p.name = view.string("name");
+    const std::string kind = view.string("kind");
+    p.kind = kind == "pressure"    ? coupling::ProbeKind::pressure
+             : kind == "elevation" ? coupling::ProbeKind::elevation
+             : kind == "front"     ? coupling::ProbeKind::front
+                                   : coupling::ProbeKind::force;
+    const Eigen::VectorXd position = view.vector("position");
+    if (position.size() == D) {
+      p.position = position;
+      const double tol = 1e-9 * (upper - lower).norm();
+      if (((p.position - lower).array() < -tol).any() ||
+          ((upper - p.position).array() < -tol).any())
+        input_error("{} = [{}] is outside the walls' bounding box [{}] – [{}] m",
+                    view.where("position"), fmt::join(position, ", "), fmt::join(lower, ", "),
+                    fmt::join(upper, ", "));
+    }
+    p.radius = view.number("radius") > 0.0 ? view.number("radius") : h;
+    if (p.kind == coupling::ProbeKind::force) {
+      const auto& names = setup.wall_names;
+      p.wall = static_cast<int>(std::find(names.begin(), names.end(), view.string("wall")) -
+                                names.begin());
+    }
+    p.direction = direction_key(view, "direction", Eigen::Vector3d::UnitX()).head<D>();
+    const Eigen::VectorXd band = view.vector("band");
+    const double floor = lower[D - 1];
+    p.band_low = floor + (band.size() == 2 ? band[0] : 0.0);
+    p.band_high = floor + (band.size() == 2 ? band[1] : 2.0 * dx);
+    probes.push_back(std::move(p));
+  }
+  return probes;
+}
+
+}  // namespace
+
+bool is_flow_scene(const io::Scene& scene) {
+  return scene.has("fluid");
+}
+
+template <int D>
+ldd::Vec<D> default_gravity() {
+  ldd::Vec<D> g = ldd::Vec<D>::Zero();
+  g[D - 1] = -9.81;
+  return g;
+}
+
+void validate_flow_scene(const io::Scene& scene) {
+  if (!is_flow_scene(scene)) return;
+  const std::string file = scene.file().filename().string();
+  if (!scene.has("time"))
+    input_error("{}: a flow scene ([fluid]) needs a [time] section with at least time.end (s)",
+                file);
+  if (scene.array("fluid.region").empty())
+    input_error(
+        "{}: a flow scene needs at least one [[fluid.region]] (origin, size in m) to fill "
+        "with fluid",
+        file);
+  if (scene.array("wall").empty())
+    input_error("{}: a flow scene needs at least one [[wall]] to hold the fluid", file);
+  for (const SceneView& wall : scene.array("wall")) wall_motion(wall, scene.dimension());
+  validate_probes(scene);
+}
+
+template <int D>
+FlowSetup<D> flow_setup(const io::Scene& scene,
+                        const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces) {
+  HM_ASSERT(scene.dimension() == D, "a {}-D flow set up from a {}-D scene", D, scene.dimension());
+  if (!is_flow_scene(scene))
+    input_error("{}: the scene has no [fluid] section, so there is no flow to run",
+                scene.file().string());
+  validate_flow_scene(scene);
+  FlowSetup<D> setup;
+  setup.options = flow_options<D>(scene);
+  for (const SceneView& wall : scene.array("wall")) {
+    const std::string name = wall.string("name");
+    const auto found = std::find_if(surfaces.begin(), surfaces.end(),
+                                    [&](const auto& s) { return s.first == name; });
+    HM_ASSERT(found != surfaces.end(), "no surface for wall '{}'", name);
+    const mesh::SurfaceMesh& surface = found->second;
+    if (surface.dim != D)
+      input_error("{} = \"{}\": the wall mesh is {}-D, the case is {}-D", wall.where("name"), name,
+                  surface.dim, D);
+    std::filesystem::path table;
+    setup.motions.push_back({surface.vertices, wall_motion(wall, D, &table)});
+    if (!table.empty()) setup.motion_tables.push_back(table);
+    setup.walls.emplace_back(surface, name, wall.boolean("thin"));
+    setup.wall_names.push_back(name);
+  }
+  coupling::place_walls<D>(setup.walls, setup.motions, 0.0);
+  seed_regions<D>(scene, setup);
+  const SceneView time = scene.section("time");
+  setup.time.end = time.number("end");
+  setup.time.snapshot_interval = time.number("snapshot_interval");
+  setup.time.probe_interval = time.number("probe_interval");
+  setup.probes = make_probes<D>(scene, setup);
+  return setup;
+}
+
+std::vector<std::pair<std::string, mesh::SurfaceMesh>> scene_wall_surfaces(
+    const io::Scene& scene, std::vector<std::filesystem::path>* files) {
+  std::vector<std::pair<std::string, mesh::SurfaceMesh>> surfaces;
+  for (const SceneView& wall : scene.array("wall")) {
+    mesh::WallOptions options;
+    options.dim = scene.dimension();
+    options.size = wall.number("mesh_size");
+    options.faces = wall.strings("faces");
+    options.flip_normals = wall.boolean("flip_normals");
+    const std::string kind = wall.string("kind");
+    const auto primitive = [&](const std::string& key) {
+      const Eigen::VectorXd v = wall.vector(key);
+      if (v.size() == 0)
+        input_error("{}: {} is required for kind = \"{}\"", wall.file().string(), wall.full(key),
+                    kind);
+      return v;
+    };
+    if ((kind == "rectangle" && options.dim != 2) || (kind == "box" && options.dim != 3))
+      input_error("{}: kind = \"{}\" needs case.dimension = {}", wall.where("kind"), kind,
+                  kind == "rectangle" ? 2 : 3);
+    mesh::SurfaceMesh surface;
+    if (kind == "rectangle") {
+      surface = mesh::mesh_rectangle_walls({primitive("origin"), primitive("size")}, options);
+    } else if (kind == "box") {
+      surface = mesh::mesh_box_walls({primitive("origin"), primitive("size")}, options);
+    } else {
+      const std::filesystem::path file = wall.file_path("file");
+      if (!std::filesystem::exists(file))
+        input_error("{}: wall surface file '{}' does not exist", wall.where("file"), file.string());
+      surface = mesh::mesh_wall_file(file, options);
+      if (files) files->push_back(file);
+    }
+    surfaces.emplace_back(wall.string("name"), std::move(surface));
+  }
+  return surfaces;
+}
+
+template <int D>
+FlowSetup<D> flow_setup(const io::Scene& scene, const io::ArtefactReader& mesh_artefact) {
+  std::vector<std::pair<std::string, mesh::SurfaceMesh>> surfaces;
+  for (const std::string& name : scene_wall_names(scene))
+    surfaces.emplace_back(name, read_wall(mesh_artefact, name));
+  return flow_setup<D>(scene, surfaces);
+}
+
+template ldd::Vec<2> default_gravity<2>();
+template ldd::Vec<3> default_gravity<3>();
+template FlowSetup<2> flow_setup<2>(const io::Scene&,
+                                    const std::vector<std::pair<std::string, mesh::SurfaceMesh>>&);
+template FlowSetup<3> flow_setup<3>(const io::Scene&,
+                                    const std::vector<std::pair<std::string, mesh::SurfaceMesh>>&);
+template FlowSetup<2> flow_setup<2>(const io::Scene&, const io::ArtefactReader&);
+template FlowSetup<3> flow_setup<3>(const io::Scene&, const io::ArtefactReader&);
+
+}  // namespace hm::driver

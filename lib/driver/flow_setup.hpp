@@ -1,0 +1,61 @@
+#pragma once
+// The flow of a scene, ready to run: solver options from [fluid], [time], [solver]; the walls of
+// mesh.h5 with their prescribed motions ([[wall]] motion keys); the fluid points seeded in every
+// [[fluid.region]]; the probes ([[probe]]). Checks what the keys alone cannot (keys required by
+// a motion, probe names and walls, regions and probes inside the walls), naming the scene key.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "coupling/probes.hpp"
+#include "coupling/run.hpp"
+#include "io/artefact.hpp"
+#include "io/scene.hpp"
+#include "ldd/flow.hpp"
+#include "mesh/types.hpp"
+
+namespace hm::driver {
+
+template <int D>
+struct FlowSetup {
+  ldd::FlowOptions<D> options;
+  std::vector<std::string> wall_names;        ///< scene [[wall]] order
+  std::vector<ldd::WallMesh<D>> walls;        ///< at their t = 0 state (moving ones placed)
+  std::vector<coupling::WallMotion> motions;  ///< parallel to walls
+  std::vector<ldd::Vec<D>> fluid, velocity;   ///< seeded points [m] and initial velocity [m/s]
+  coupling::TimeControl time;
+  std::vector<coupling::Probe<D>> probes;
+  std::vector<std::filesystem::path> motion_tables;  ///< CSV files read (provenance inputs)
+};
+
+/// Whether the scene describes a flow (it has a [fluid] section).
+bool is_flow_scene(const io::Scene& scene);
+
+/// Every check of the flow part of a scene that needs no mesh (for --validate): [time] and a
+/// [[fluid.region]] present, the keys each wall motion requires (and its CSV table readable),
+/// probe names ([A-Za-z0-9_]+, unique), each probe's kind-specific keys, a force probe's wall
+/// among the [[wall]] names. InputError naming the key (file:line: key).
+void validate_flow_scene(const io::Scene& scene);
+
+/// Builds the flow from the scene and the wall surfaces (name → surface, at least the scene's
+/// [[wall]] names). Runs validate_flow_scene first. InputError (naming the scene key) for a
+/// fluid region outside the walls, a probe position outside the walls' bounding box.
+template <int D>
+FlowSetup<D> flow_setup(const io::Scene& scene,
+                        const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces);
+
+/// As above with the walls of a hydromodal.mesh artefact (/walls/<name>).
+template <int D>
+FlowSetup<D> flow_setup(const io::Scene& scene, const io::ArtefactReader& mesh_artefact);
+
+/// The [[wall]]s of the scene meshed here, as fsi-mesh would write them to mesh.h5 (same
+/// lib/mesh functions and keys): for rigid-only scenes, which fsi-mesh does not take (it needs a
+/// [structure]). The surface files of kind = "file" walls are appended to `files`.
+std::vector<std::pair<std::string, mesh::SurfaceMesh>> scene_wall_surfaces(
+    const io::Scene& scene, std::vector<std::filesystem::path>* files = nullptr);
+
+/// The default gravity: −9.81 m/s² along the last axis.
+template <int D>
+ldd::Vec<D> default_gravity();
+
+}  // namespace hm::driver

@@ -1,0 +1,235 @@
+#include "driver/simulate_stage.hpp"
+
+#include <optional>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "core/errors.hpp"
+#include "core/log.hpp"
+#include "core/progress.hpp"
+#include "core/text.hpp"
+#include "coupling/probes.hpp"
+#include "coupling/run.hpp"
+#include "driver/flow_setup.hpp"
+#include "io/artefact.hpp"
+#include "io/probe_csv.hpp"
+#include "ldd/snapshots.hpp"
+
+namespace hm::driver {
+namespace {
+
+namespace ds = io::ds;
+namespace ra = io::results_attr;
+constexpr const char* stage_name = "fsi-simulate";
+
+std::vector<io::InputRecord> provenance_inputs(const io::Scene& scene, const SimulateInputs& inputs,
+                                               const std::vector<std::filesystem::path>& tables) {
+  std::vector<io::InputRecord> records{io::input_record("scene", scene.file())};
+  if (!inputs.mesh.empty()) records.push_back(io::input_record("mesh", inputs.mesh));
+  if (!inputs.mapped.empty()) records.push_back(io::input_record("mapped", inputs.mapped));
+  for (std::size_t k = 0; k < tables.size(); ++k)
+    records.push_back(io::input_record(fmt::format("motion_table_{}", k), tables[k]));
+  return records;
+}
+
+template <typename T, typename F>
+std::vector<T> column(const std::vector<ldd::StepMonitor>& monitors, F field) {
+  std::vector<T> out;
+  out.reserve(monitors.size());
+  for (const auto& m : monitors) out.push_back(static_cast<T>(field(m)));
+  return out;
+}
+
+void write_monitors(io::ArtefactWriter& w, const std::vector<ldd::StepMonitor>& m) {
+  using M = ldd::StepMonitor;
+  w.write(ds::monitor_step, column<std::int64_t>(m, [](const M& s) { return s.step; }));
+  w.write(ds::monitor_time, column<double>(m, [](const M& s) { return s.time; }));
+  w.write(ds::monitor_dt, column<double>(m, [](const M& s) { return s.dt; }));
+  w.write(ds::monitor_dt_limit,
+          column<std::int64_t>(m, [](const M& s) { return static_cast<int>(s.limit); }));
+  w.write(ds::monitor_ppe_iterations,
+          column<std::int64_t>(m, [](const M& s) { return s.ppe_iterations; }));
+  w.write(ds::monitor_ppe_passes, column<std::int64_t>(m, [](const M& s) { return s.ppe_passes; }));
+  w.write(ds::monitor_ppe_residual, column<double>(m, [](const M& s) { return s.ppe_residual; }));
+  w.write(ds::monitor_ppe_converged,
+          column<std::int64_t>(m, [](const M& s) { return s.ppe_converged ? 1 : 0; }));
+  w.write(ds::monitor_max_divergence,
+          column<double>(m, [](const M& s) { return s.max_divergence; }));
+  w.write(ds::monitor_volume_drift, column<double>(m, [](const M& s) { return s.volume_drift; }));
+  w.write(ds::monitor_max_speed, column<double>(m, [](const M& s) { return s.max_speed; }));
+  w.write(ds::monitor_escaped, column<std::int64_t>(m, [](const M& s) { return s.escaped; }));
+  w.write(ds::monitor_fluid, column<std::int64_t>(m, [](const M& s) { return s.fluid; }));
+  w.write(ds::monitor_surface, column<std::int64_t>(m, [](const M& s) { return s.surface; }));
+  w.write(ds::monitor_isolated, column<std::int64_t>(m, [](const M& s) { return s.isolated; }));
+  w.write(ds::monitor_wall_active,
+          column<std::int64_t>(m, [](const M& s) { return s.wall_active; }));
+}
+
+void write_phase_totals(io::ArtefactWriter& w, const ldd::PhaseSeconds& s) {
+  const std::vector<double> values{s.advect,       s.pbd,          s.neighbours,
+                                   s.operators,    s.free_surface, s.predictor,
+                                   s.ppe_assembly, s.ppe_solve,    s.corrector};
+  w.write(ds::run_phase_seconds, values);
+  w.set_attribute(ra::phase_names, std::string("advect,pbd,neighbours,operators,free_surface,"
+                                               "predictor,ppe_assembly,ppe_solve,corrector"));
+}
+
+void write_probes(io::ArtefactWriter& w, const coupling::ProbeSeries& series,
+                  const std::vector<std::string>& columns) {
+  w.set_attribute(ra::probe_columns, join(columns, ","));
+  if (columns.empty()) return;
+  io::MatrixRM values(static_cast<Eigen::Index>(series.time.size()),
+                      static_cast<Eigen::Index>(columns.size()));
+  for (std::size_t r = 0; r < series.rows.size(); ++r)
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      values(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = series.rows[r][c];
+  w.write(ds::probe_time, series.time);
+  w.write(ds::probe_values, values);
+}
+
+std::string first_line(const std::string& text) {
+  return text.substr(0, text.find('\n'));
+}
+
+template <int D>
+std::string describe_walls(const FlowSetup<D>& setup, const io::Scene& scene) {
+  std::vector<std::string> lines;
+  const auto views = scene.array("wall");
+  for (std::size_t w = 0; w < setup.walls.size(); ++w)
+    lines.push_back(fmt::format("{} ({} vertices, {} elements, motion {}{})", setup.wall_names[w],
+                                setup.walls[w].vertices().size(), setup.walls[w].element_count(),
+                                views[w].string("motion"), setup.walls[w].thin() ? ", thin" : ""));
+  return join(lines, "; ");
+}
+
+template <int D>
+void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
+              const std::filesystem::path& output) {
+  std::vector<std::filesystem::path> wall_files;
+  FlowSetup<D> setup;
+  if (inputs.mesh.empty()) {
+    spdlog::info("{}: no --mesh: meshing the walls from the scene's [[wall]] keys", stage_name);
+    setup = flow_setup<D>(scene, scene_wall_surfaces(scene, &wall_files));
+  } else {
+    setup = flow_setup<D>(scene, io::ArtefactReader(inputs.mesh, io::mesh_schema()));
+  }
+  const auto& o = setup.options;
+  spdlog::info(
+      "{}: {}-D flow: {} fluid points, dx = {} m, h = {} m, ρ = {} kg/m³, ν = {} m²/s, "
+      "g = [{}] m/s², to t = {} s; walls: {}; {} probe(s)",
+      stage_name, D, setup.fluid.size(), o.dx, o.support_factor * o.dx, o.density, o.viscosity,
+      fmt::join(o.gravity, ", "), setup.time.end, describe_walls(setup, scene),
+      setup.probes.size());
+  auto records = provenance_inputs(scene, inputs, setup.motion_tables);
+  for (std::size_t k = 0; k < wall_files.size(); ++k)
+    records.push_back(io::input_record(fmt::format("wall_file_{}", k), wall_files[k]));
+  const std::vector<std::string> wall_names = setup.wall_names;
+  const ldd::Index fluid_points = static_cast<ldd::Index>(setup.fluid.size());
+  ldd::FlowSolver<D> solver(std::move(setup.walls), setup.fluid, setup.velocity, o);
+  spdlog::info("{}: {} wall nodes; initial pressure solved", stage_name,
+               solver.points().size() - fluid_points);
+
+  const std::filesystem::path folder = output.parent_path().empty() ? "." : output.parent_path();
+  const std::vector<std::string> columns = coupling::probe_columns<D>(setup.probes);
+  std::optional<io::ProbeCsvWriter> csv;
+  if (!columns.empty())
+    csv.emplace(folder / "probes.csv", columns);
+  else
+    std::filesystem::remove(folder / "probes.csv");
+  ldd::SnapshotWriter<D> snapshots(folder / "snapshots", "flow");
+  std::optional<ldd::SnapshotWriter<D>> failed;
+  Progress progress(stage_name, setup.time.end, "s", spdlog::get_level() > spdlog::level::info);
+
+  coupling::RunSinks<D> sinks;
+  if (!columns.empty()) {
+    sinks.evaluate_probes = [&](const ldd::FlowSolver<D>& s) {
+      return coupling::evaluate_probes<D>(s, setup.probes);
+    };
+    sinks.probe_row = [&](double t, std::span<const double> v) { csv->write_row(t, v); };
+  }
+  sinks.snapshot = [&](const ldd::FlowSolver<D>& s, coupling::SnapshotKind kind) {
+    if (kind == coupling::SnapshotKind::diverged && !failed)
+      failed.emplace(folder / "snapshots", "diverged");
+    auto& writer = kind == coupling::SnapshotKind::regular ? snapshots : *failed;
+    writer.write(s.time(), s.points(), s.walls(), wall_names);
+  };
+  sinks.progress = [&](const ldd::StepMonitor& m) { progress.update(m.time); };
+
+  const coupling::RunResult r = coupling::run<D>(solver, setup.motions, setup.time, sinks);
+  if (csv) csv->finish();
+  const bool completed = r.status == coupling::RunStatus::completed;
+  if (completed) progress.finish();
+
+  io::ArtefactWriter w(output, io::results_schema(), stage_name,
+                       simulate_parameters(scene, inputs.mesh.empty()), records);
+  write_monitors(w, r.monitors);
+  write_phase_totals(w, r.phase_totals);
+  write_probes(w, r.probes, columns);
+  if (!completed) w.set_attribute(io::attr::status, "diverged: " + first_line(r.divergence_report));
+  w.set_attribute(ra::run_status, std::string(coupling::to_string(r.status)));
+  w.set_attribute(ra::divergence_report, r.divergence_report);
+  w.set_attribute(ra::wall_seconds, r.wall_seconds);
+  w.set_attribute(ra::steps, static_cast<std::int64_t>(r.monitors.size()));
+  w.set_attribute(ra::points, static_cast<std::int64_t>(fluid_points));
+  w.set_attribute(ra::end_time, r.end_time);
+  w.set_attribute(ra::snapshots, static_cast<std::int64_t>(r.snapshots));
+  w.set_attribute(ra::dt_limit_names, std::string("cfl,viscous,acceleration,maximum,output"));
+  w.set_attribute(ra::dx, o.dx);
+  w.set_attribute(ra::support, o.support_factor * o.dx);
+  w.commit();
+
+  const double steps = static_cast<double>(r.monitors.size());
+  spdlog::info(
+      "{}: {} at t = {} s: {} steps in {:.2f} s ({:.3g} particle-steps/s); wrote {}, {} "
+      "snapshot(s) in {}",
+      stage_name, coupling::to_string(r.status), r.end_time, r.monitors.size(), r.wall_seconds,
+      steps * fluid_points / std::max(r.wall_seconds, 1e-9), output.string(), r.snapshots,
+      (folder / "snapshots").string());
+  if (!completed)
+    numerical_error(
+        "{}: the flow diverged at t = {} s; {} keeps the run up to then (status "
+        "diverged), {} the failed state.\n{}",
+        stage_name, r.end_time, output.string(), (folder / "snapshots" / "diverged.xdmf").string(),
+        r.divergence_report);
+}
+
+}  // namespace
+
+std::string simulate_parameters(const io::Scene& scene, bool walls_from_scene) {
+  std::string text = scene.parameters_for(stage_name);
+  if (!walls_from_scene) return text;
+  const std::string mesh = scene.parameters_for("fsi-mesh");
+  for (std::size_t start = 0; start < mesh.size();) {
+    const std::size_t end = mesh.find('\n', start);
+    const std::string line = mesh.substr(start, end - start);
+    if (line.rfind("wall[", 0) == 0) text += line + "\n";
+    start = end == std::string::npos ? mesh.size() : end + 1;
+  }
+  return text;
+}
+
+void validate_simulate_scene(const io::Scene& scene) {
+  if (!is_flow_scene(scene) && !scene.has("structure"))
+    input_error(
+        "{}: nothing to simulate: the scene has neither a [fluid] nor a [structure] "
+        "section",
+        scene.file().string());
+  validate_flow_scene(scene);
+}
+
+void run_simulate_stage(const io::Scene& scene, const SimulateInputs& inputs,
+                        const std::filesystem::path& output) {
+  validate_simulate_scene(scene);
+  if (!is_flow_scene(scene))
+    throw UsageError(
+        fmt::format("{}: {} has no [fluid] section; structure-only runs are not "
+                    "available in this version of fsi-simulate",
+                    stage_name, scene.file().string()));
+  if (scene.dimension() == 2)
+    run_flow<2>(scene, inputs, output);
+  else
+    run_flow<3>(scene, inputs, output);
+}
+
+}  // namespace hm::driver
