@@ -39,6 +39,8 @@ struct FreeSurfaceOptions {
   double wall_cone_degrees = 85.0;  ///< half-angle of the cone of wall nodes (item 4)
   double hysteresis = 0.8;
   double min_wall_tangent = 0.3;  ///< |tangential part of ν| below this: wall node covered
+  /// Fluid neighbours cover a cone only within this distance, × h (0.8 h = 2 dx at h = 2.5 dx).
+  double cover_reach = 0.8;
 };
 
 struct FreeSurfaceReport {
