@@ -1,0 +1,230 @@
+#!/usr/bin/env python3
+"""check_flow_smoke.py CASE OUT_DIR SCENE SOURCE_DIR BUILD_DIR
+
+Checks the smoke run of a flow pipeline (results.h5 and probes.csv in OUT_DIR) against the
+case's stated tolerances; prints the measured numbers; exits 1 naming every failed check.
+The constants (tank, column, depth, sway period, end time) are read from the scene, the
+references from data/reference/. Only the standard library, h5dump and fsi-inspect are used.
+"""
+import csv
+import json
+import math
+import re
+import subprocess
+import sys
+import tomllib
+from pathlib import Path
+
+GRAVITY = 9.81  # m/s², the scenes' default (fluid.gravity = [])
+
+
+class Checks:
+    def __init__(self):
+        self.failed = []
+
+    def expect(self, ok, message):
+        print(("ok    " if ok else "FAIL  ") + message)
+        if not ok:
+            self.failed.append(message)
+
+
+def read_probes(out):
+    """probes.csv as {column name: [values]}."""
+    with open(out / "probes.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    header, values = rows[0], [[float(v) for v in row] for row in rows[1:] if row]
+    return {name: [row[c] for row in values] for c, name in enumerate(header)}
+
+
+def read_xy(path):
+    """Two-column reference CSV with one header line."""
+    with open(path, newline="") as f:
+        return [(float(a), float(b)) for a, b in list(csv.reader(f))[1:]]
+
+
+def interpolate(xy, x):
+    """Linear interpolation in a table sorted by x, clamped at the ends."""
+    if x <= xy[0][0]:
+        return xy[0][1]
+    for (x0, y0), (x1, y1) in zip(xy, xy[1:]):
+        if x <= x1:
+            return y0 + (x - x0) / (x1 - x0) * (y1 - y0)
+    return xy[-1][1]
+
+
+def first_crossing(xy, level):
+    """First x where y rises through `level` (linear between samples), None if never."""
+    for (x0, y0), (x1, y1) in zip(xy, xy[1:]):
+        if y0 <= level < y1:
+            return x0 + (x1 - x0) * (level - y0) / (y1 - y0)
+    return None
+
+
+def zero_crossings(t, s):
+    out = []
+    for k in range(1, len(s)):
+        if (s[k - 1] > 0) != (s[k] > 0):
+            out.append(t[k - 1] + (t[k] - t[k - 1]) * s[k - 1] / (s[k - 1] - s[k]))
+    return out
+
+
+def dataset(build, results, path):
+    """A 1-D dataset of results.h5 through h5dump."""
+    text = subprocess.run(["h5dump", "-y", "-w", "0", "-d", path, str(results)],
+                          check=True, capture_output=True, text=True).stdout
+    data = re.search(r"DATA \{(.*?)\}", text, re.S).group(1)
+    return [float(v) for v in data.replace(",", " ").split()]
+
+
+def inspect(build, results):
+    text = subprocess.run([str(build / "stages/fsi-inspect/fsi-inspect"), "--json", str(results)],
+                          check=True, capture_output=True, text=True).stdout
+    return json.loads(text)
+
+
+def check_run(c, scene, out, build):
+    """Completed (no divergence) to the scene's end time; returns max |volume drift|."""
+    results = out / "results.h5"
+    attributes = inspect(build, results)["attributes"]
+    end = scene["time"]["end"]
+    c.expect(attributes["run_status"] == "completed",
+             f"run_status = {attributes['run_status']!r} (expected 'completed'); "
+             f"divergence report: {attributes['divergence_report']!r}")
+    c.expect(abs(attributes["end_time"] - end) <= 1e-9 * end,
+             f"end_time = {attributes['end_time']} s (scene: {end} s)")
+    drift = max(abs(v) for v in dataset(build, results, "/monitors/volume_drift"))
+    print(f"      {attributes['steps']} steps, {attributes['points']} points, "
+          f"{attributes['wall_seconds']:.2f} s; max |volume drift| {100 * drift:.3f} %")
+    return drift
+
+
+def dambreak_koshizuka(c, scene, out, source, build):
+    drift = check_run(c, scene, out, build)
+    c.expect(drift < 0.01, f"max |volume drift| {100 * drift:.3f} % < 1 %")
+    L = scene["fluid"]["region"][0]["size"][0]  # column width [m]
+    scale = math.sqrt(2 * GRAVITY / L)  # T = t·√(2g/L)
+    p = read_probes(out)
+    front = list(zip([t * scale for t in p["t [s]"]], [x / L for x in p["front.front [m]"]]))
+    reference = source / "data/reference/dambreak_koshizuka_oka_1996"
+    mps = read_xy(reference / "pysph_ko1996_mps_front.csv")
+    experiment = read_xy(reference / "pysph_ko1996_experiment_front.csv")
+    asserted = {1.0, 2.0, 2.9}  # MPS ends at T = 2.94 (Z = 4, the right wall)
+    for T in (1.0, 1.5, 2.0, 2.5, 2.9, 3.0):
+        z, z_mps, z_exp = interpolate(front, T), interpolate(mps, T), interpolate(experiment, T)
+        e_mps, e_exp = z / z_mps - 1, z / z_exp - 1
+        line = (f"T = {T:.1f}: front Z = {z:.3f} (MPS {z_mps:.3f}: {100 * e_mps:+.1f} %; "
+                f"experiment {z_exp:.3f}: {100 * e_exp:+.1f} %)")
+        if T in asserted:
+            c.expect(abs(e_mps) < 0.08, line + " within 8 % of MPS")
+        else:
+            print("      " + line)
+
+
+def dambreak_lobovsky(c, scene, out, source, build):
+    check_run(c, scene, out, build)
+    H = scene["fluid"]["region"][0]["size"][1]  # column height [m]
+    rho_g_h = scene["fluid"]["density"] * GRAVITY * H
+    scale = math.sqrt(GRAVITY / H)  # T = t·√(g/H)
+    p = read_probes(out)
+    T = [t * scale for t in p["t [s]"]]
+    reference = source / "data/reference/dambreak_lobovsky_2014"
+    sensors = {n: read_xy(reference / f"pysph_lobovsky2014_H300_sensor{n}.csv") for n in (1, 3)}
+    p1 = list(zip(T, [v / rho_g_h for v in p["p1.p [Pa]"]]))
+    t_sim, t_exp = first_crossing(p1, 0.5), first_crossing(sensors[1], 0.5)
+    c.expect(t_sim is not None, "p1 exceeds 0.5·ρgH")
+    if t_sim is not None:
+        c.expect(abs(t_sim / t_exp - 1) < 0.05,
+                 f"impact: p1 first exceeds 0.5·ρgH at t·√(g/H) = {t_sim:.3f} "
+                 f"(experiment {t_exp:.3f}: {100 * (t_sim / t_exp - 1):+.1f} %) within 5 %")
+    impact_end = 3.0  # the first impact; the plunging wave returns at ≈ 5.9
+    for n in (1, 3):
+        sim = [(x, v / rho_g_h) for x, v in zip(T, p[f"p{n}.p [Pa]"]) if x < impact_end]
+        exp = [q for q in sensors[n] if q[0] < impact_end]
+        (ts, ps), (te, pe) = max(sim, key=lambda q: q[1]), max(exp, key=lambda q: q[1])
+        print(f"      p{n} first-impact peak (t·√(g/H) < {impact_end}): {ps:.2f} ρgH at {ts:.3f} "
+              f"(experiment {pe:.2f} at {te:.3f}: {100 * (ps / pe - 1):+.0f} %, "
+              f"{100 * (ts / te - 1):+.1f} % in time)")
+
+
+def sloshing_first_mode_period(length, depth):
+    """Linear first-mode period of a rectangular tank [s]: ω² = (πg/L)·tanh(πH/L)."""
+    k = math.pi / length
+    return 2 * math.pi / math.sqrt(GRAVITY * k * math.tanh(k * depth))
+
+
+def sloshing_linear(c, scene, out, source, build):
+    drift = check_run(c, scene, out, build)
+    length = scene["wall"][0]["size"][0]
+    depth = scene["fluid"]["region"][0]["size"][1]
+    period = sloshing_first_mode_period(length, depth)  # also the pulse's duration (pulse.csv)
+    p = read_probes(out)
+    after = [k for k, t in enumerate(p["t [s]"]) if t >= period]
+    t = [p["t [s]"][k] for k in after]
+    s = [p["eta_left.eta [m]"][k] - p["eta_right.eta [m]"][k] for k in after]
+    crossings = zero_crossings(t, s)
+    c.expect(len(crossings) >= 5, f"{len(crossings)} zero crossings after the pulse (≥ 5)")
+    if len(crossings) < 5:
+        return
+    whole = (len(crossings) - 1) // 2
+    measured = (crossings[2 * whole] - crossings[0]) / whole
+    swings = [max(abs(v) for tv, v in zip(t, s) if a <= tv <= b)
+              for a, b in zip(crossings, crossings[1:])]
+    print(f"      eta_left − eta_right half-swing peaks [mm]: "
+          + ", ".join(f"{1000 * v:.1f}" for v in swings) + f"; max |volume drift| "
+          f"{100 * drift:.3f} %")
+    c.expect(abs(measured / period - 1) < 0.03,
+             f"period {measured:.4f} s over {whole} whole periods against {period:.4f} s "
+             f"({100 * (measured / period - 1):+.2f} %) within 3 %")
+
+
+def sway_sloshing(c, scene, out, source, build):
+    drift = check_run(c, scene, out, build)
+    c.expect(drift < 0.02, f"max |volume drift| {100 * drift:.3f} % < 2 %")
+    results = out / "results.h5"
+    speed = max(dataset(build, results, "/monitors/max_speed"))
+    escaped = dataset(build, results, "/monitors/escaped")[-1]
+    c.expect(speed < 1.0, f"max fluid speed {speed:.3f} m/s < 1 m/s (wave orbital speed ωa ≈ 0.1)")
+    c.expect(escaped == 0, f"{escaped:.0f} points escaped the tank (expected 0)")
+    wall = scene["wall"][0]
+    period = wall["sway_period"]
+    count = round((scene["time"]["end"] - wall["motion_ramp"]) / period)
+    start = wall["motion_ramp"] - period  # period 0 is the ramp's (the ramp lasts one period)
+    p = read_probes(out)
+    amplitude = []
+    for k in range(count + 1):
+        window = [i for i, t in enumerate(p["t [s]"])
+                  if start + k * period - 1e-9 <= t <= start + (k + 1) * period + 1e-9]
+        eta = [p["eta_left.eta [m]"][i] for i in window]
+        pressure = [p["p_wall.p [Pa]"][i] for i in window]
+        fx = [p["tank.fx [N]"][i] for i in window]
+        amplitude.append((max(eta) - min(eta)) / 2)
+        print(f"      period {k}{' (ramp)' if k == 0 else ''}: eta_left {min(eta):.4f} … "
+              f"{max(eta):.4f} m (half range {1000 * amplitude[-1]:.1f} mm), p_wall "
+              f"{min(pressure):.0f} … {max(pressure):.0f} Pa, tank.fx {min(fx):.1f} … "
+              f"{max(fx):.1f} N/m")
+    for k in range(1, len(amplitude)):
+        c.expect(amplitude[k] > 1.1 * amplitude[k - 1],
+                 f"resonance: eta_left half range grows from period {k - 1} to {k} by more than "
+                 f"10 % ({1000 * amplitude[k - 1]:.1f} → {1000 * amplitude[k]:.1f} mm)")
+
+
+def main():
+    if len(sys.argv) != 6:
+        sys.exit(__doc__)
+    case, out, scene_file, source, build = sys.argv[1:]
+    checks = {f.__name__: f for f in (dambreak_koshizuka, dambreak_lobovsky, sloshing_linear,
+                                      sway_sloshing)}
+    if case not in checks:
+        sys.exit(f"check_flow_smoke.py: unknown case {case!r}; expected one of {sorted(checks)}")
+    with open(scene_file, "rb") as f:
+        scene = tomllib.load(f)
+    c = Checks()
+    checks[case](c, scene, Path(out), Path(source), Path(build))
+    if c.failed:
+        print(f"{case}: {len(c.failed)} check(s) failed")
+        sys.exit(1)
+    print(f"{case}: all checks passed")
+
+
+if __name__ == "__main__":
+    main()
