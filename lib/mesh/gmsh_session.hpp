@@ -26,6 +26,7 @@ class GmshSession {
 
  private:
   std::unique_lock<std::mutex> lock_;
+  int openmp_threads_;  ///< OpenMP thread count before gmsh changed it, restored at the end
 };
 
 /// The message gmsh carries in an exception: gmsh 4.8 throws std::string (the last error);

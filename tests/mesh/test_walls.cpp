@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 #include <Eigen/Geometry>
+#include <omp.h>
 
 #include "core/errors.hpp"
 #include "geometry/surface_checks.hpp"
@@ -72,6 +73,14 @@ TEST(Walls, OpenTankOfChosenFaces) {
       message.find("wall face 'floor' does not exist; faces: [xmin, xmax, ymin, ymax, zmin, zmax]"),
       std::string::npos)
       << message;
+}
+
+// gmsh sets the process's OpenMP thread count to its General.NumThreads; a gmsh session must
+// leave the count as it found it, or every solver after meshing runs on one thread.
+TEST(Walls, MeshingKeepsTheOpenMpThreadCount) {
+  omp_set_num_threads(3);
+  mesh_rectangle_walls({{0.0, 0.0}, {1.0, 0.5}}, walls(2, 0.1, {"xmin", "ymin", "xmax"}));
+  EXPECT_EQ(omp_get_max_threads(), 3);
 }
 
 TEST(Walls, RectangleTankSegmentsPointInward) {
