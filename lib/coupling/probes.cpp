@@ -1,5 +1,7 @@
 #include "coupling/probes.hpp"
 
+#include <Eigen/Geometry>
+
 #include <array>
 
 #include "core/errors.hpp"
@@ -30,6 +32,42 @@ std::vector<std::string> probe_columns(std::span<const Probe<D>> probes) {
   return columns;
 }
 
+namespace {
+
+/// Orthonormal frame of wall element e (columns: tangent(s), then the normal into the fluid).
+template <int D>
+ldd::Mat<D> element_frame(const ldd::WallMesh<D>& wall, ldd::Index e) {
+  const auto& c = wall.element(e);
+  const auto& x = wall.vertices();
+  ldd::Vec<D> centre = ldd::Vec<D>::Constant(1.0 / D);
+  const ldd::Vec<D> normal = wall.normal_at(e, centre);
+  const ldd::Vec<D> t1 = (x[c[1]] - x[c[0]]).normalized();
+  ldd::Mat<D> frame;
+  frame.col(0) = t1;
+  if constexpr (D == 3) frame.col(1) = normal.cross(t1);
+  frame.col(D - 1) = normal;
+  return frame;
+}
+
+}  // namespace
+
+template <int D>
+void attach_probe(Probe<D>& probe, const ldd::WallMesh<D>& wall, int index) {
+  const auto c = wall.closest(probe.position);
+  probe.attached = index;
+  probe.element = c.element;
+  probe.barycentric = c.barycentric;
+  probe.local = element_frame<D>(wall, c.element).transpose() * (probe.position - c.point);
+}
+
+template <int D>
+ldd::Vec<D> probe_position(const Probe<D>& probe, std::span<const ldd::WallMesh<D>> walls) {
+  if (probe.attached < 0) return probe.position;
+  const auto& wall = walls[static_cast<std::size_t>(probe.attached)];
+  return wall.point_at(probe.element, probe.barycentric) +
+         element_frame<D>(wall, probe.element) * probe.local;
+}
+
 template <int D>
 std::vector<double> evaluate_probes(const ldd::FlowSolver<D>& solver,
                                     std::span<const Probe<D>> probes) {
@@ -40,10 +78,11 @@ std::vector<double> evaluate_probes(const ldd::FlowSolver<D>& solver,
   for (const Probe<D>& p : probes) {
     switch (p.kind) {
       case ProbeKind::pressure:
-        row.push_back(ldd::probe_pressure<D>(points, walls, p.position, p.radius, dx));
+        row.push_back(
+            ldd::probe_pressure<D>(points, walls, probe_position<D>(p, walls), p.radius, dx));
         break;
       case ProbeKind::elevation:
-        row.push_back(ldd::probe_elevation<D>(points, p.position, dx));
+        row.push_back(ldd::probe_elevation<D>(points, probe_position<D>(p, walls), dx));
         break;
       case ProbeKind::front:
         row.push_back(ldd::probe_front<D>(points, p.direction, p.band_low, p.band_high, dx));
@@ -61,6 +100,10 @@ std::vector<double> evaluate_probes(const ldd::FlowSolver<D>& solver,
   return row;
 }
 
+template void attach_probe<2>(Probe<2>&, const ldd::WallMesh<2>&, int);
+template void attach_probe<3>(Probe<3>&, const ldd::WallMesh<3>&, int);
+template ldd::Vec<2> probe_position<2>(const Probe<2>&, std::span<const ldd::WallMesh<2>>);
+template ldd::Vec<3> probe_position<3>(const Probe<3>&, std::span<const ldd::WallMesh<3>>);
 template std::vector<std::string> probe_columns<2>(std::span<const Probe<2>>);
 template std::vector<std::string> probe_columns<3>(std::span<const Probe<3>>);
 template std::vector<double> evaluate_probes<2>(const ldd::FlowSolver<2>&,

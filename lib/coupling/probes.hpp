@@ -7,7 +7,8 @@
 //                                  [band_low, band_high] (absolute heights)
 //   force     → `<name>.fx [N]`, `.fy [N]` (, `.fz [N]`) pressure force on wall `wall`
 //                (2-D: per metre of width, N/m)
-// A dry pressure probe or gauge and an empty front band read 0.
+// A dry pressure probe or gauge and an empty front band read 0. Pressure probes and gauges can
+// be fixed to a wall (`moves_with`): a sensor on a swaying tank moves with it.
 #include <span>
 #include <string>
 #include <vector>
@@ -27,7 +28,22 @@ struct Probe {
   int wall = -1;                                 ///< force: index into the solver's walls
   ldd::Vec<D> direction = ldd::Vec<D>::UnitX();  ///< front: unit direction
   double band_low = 0.0, band_high = 0.0;        ///< front: absolute heights [m]
+  /// moves_with: index of the wall the probe is fixed to (−1: fixed in space). The position
+  /// is then the host element's point `barycentric` plus `local` offset in the element's frame
+  /// (tangent(s), normal), so the probe follows the wall's motion exactly when rigid.
+  int attached = -1;
+  ldd::Index element = -1;
+  ldd::Vec<D> barycentric = ldd::Vec<D>::Zero();
+  ldd::Vec<D> local = ldd::Vec<D>::Zero();
 };
+
+/// Fixes probe `probe` (its position at the wall's current placement) to wall `index`.
+template <int D>
+void attach_probe(Probe<D>& probe, const ldd::WallMesh<D>& wall, int index);
+
+/// Where the probe is now [m]: its position, or the point it is fixed to on a moving wall.
+template <int D>
+ldd::Vec<D> probe_position(const Probe<D>& probe, std::span<const ldd::WallMesh<D>> walls);
 
 /// CSV column names of the probes in order (without the time column).
 template <int D>

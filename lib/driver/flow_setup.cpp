@@ -147,6 +147,17 @@ void validate_probe(const SceneView& probe, const std::vector<std::string>& wall
                   guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess));
     }
   }
+  if (const std::string host = probe.string("moves_with"); !host.empty()) {
+    if (kind != "pressure" && kind != "elevation")
+      input_error("{}: only pressure and elevation probes can move with a wall, not a {} probe",
+                  probe.where("moves_with"), kind);
+    if (std::find(walls.begin(), walls.end(), host) == walls.end()) {
+      const std::string guess = closest_match(host, walls);
+      input_error("{} = \"{}\" is not a wall of the scene: expected one of {}{}",
+                  probe.where("moves_with"), host, fmt::join(walls, ", "),
+                  guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess));
+    }
+  }
   if (kind == "front") {
     direction_key(probe, "direction", Eigen::Vector3d::UnitX());
     const Eigen::VectorXd band = probe.vector("band");
@@ -278,6 +289,12 @@ std::vector<coupling::Probe<D>> make_probes(const io::Scene& scene, const FlowSe
       const auto& names = setup.wall_names;
       p.wall = static_cast<int>(std::find(names.begin(), names.end(), view.string("wall")) -
                                 names.begin());
+    }
+    if (const std::string host = view.string("moves_with"); !host.empty()) {
+      const auto& names = setup.wall_names;
+      const int index =
+          static_cast<int>(std::find(names.begin(), names.end(), host) - names.begin());
+      coupling::attach_probe<D>(p, setup.walls[static_cast<std::size_t>(index)], index);
     }
     p.direction = direction_key(view, "direction", Eigen::Vector3d::UnitX()).head<D>();
     const Eigen::VectorXd band = view.vector("band");

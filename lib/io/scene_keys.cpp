@@ -303,6 +303,10 @@ const std::vector<KeyDecl>& scene_keys() {
              "pressure: radius of the averaging sphere (0: h = support_factor·dx)", simulate_stage),
       text("probe[].wall", "\"\"", {}, "force: name of the [[wall]] the pressure is integrated on",
            simulate_stage),
+      text("probe[].moves_with", "\"\"", {},
+           "pressure, elevation: name of a [[wall]] the probe is fixed to (it follows the wall's "
+           "motion, e.g. a sensor on a swaying tank); empty: fixed in space",
+           simulate_stage),
       vector("probe[].direction", "[]", "1", 0,
              "front: direction the front advances in, normalised (default: +x)", simulate_stage),
       vector("probe[].band", "[]", "m", 2,
