@@ -661,7 +661,7 @@ template <int D>
 void FlowSolver<D>::update_monitors(double dt, std::span<const Vec<D>> old_velocity,
                                     StepMonitor& m) {
   const Index n = points_.size();
-  const double h = support();
+  const auto grad = slip_velocity_gradient<D>(points_, neighbours_, ops_, points_.velocity);
   double max_div = 0.0, max_speed = 0.0;
   Index fluid = 0, surface = 0, isolated = 0, active = 0;
 #pragma omp parallel for schedule(static) reduction(max : max_div, max_speed) \
@@ -678,16 +678,8 @@ void FlowSolver<D>::update_monitors(double dt, std::span<const Vec<D>> old_veloc
     isolated += type == PointType::isolated;
     acceleration_[i] = (points_.velocity[i] - old_velocity[i]).norm() / dt;
     max_speed = std::max(max_speed, points_.velocity[i].norm());
-    Mat<D> g = Mat<D>::Zero();
-    if (!ops_.isolated(i)) {
-      for (Index j : neighbours_.of(i)) {
-        const Vec<D> r = points_.position[j] - points_.position[i];
-        const Vec<D> gw = wendland_c2(r.norm() / h) * (ops_.renormalisation[i] * r);
-        g += (points_.velocity[j] - points_.velocity[i]) * gw.transpose();
-      }
-    }
-    grad_u_[i] = g;
-    if (type == PointType::interior) max_div = std::max(max_div, std::abs(g.trace()));
+    grad_u_[i] = grad[i];
+    if (type == PointType::interior) max_div = std::max(max_div, std::abs(grad[i].trace()));
   }
   m.max_divergence = max_div;
   m.max_speed = max_speed;

@@ -211,6 +211,26 @@ std::vector<double> divergence(std::span<const Vec<D>> x, const Neighbours& nb,
 }
 
 template <int D>
+std::vector<Mat<D>> slip_velocity_gradient(const PointSet<D>& pts, const Neighbours& nb,
+                                           const Operators<D>& ops, std::span<const Vec<D>> u) {
+  const Index n = nb.points();
+  std::vector<Mat<D>> grad(static_cast<std::size_t>(n), Mat<D>::Zero());
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    if (ops.isolated(i)) continue;
+    Mat<D> s = Mat<D>::Zero();  // Σ W (u_j − u_i) ⊗ r, then ∇u = s B
+    for (Index j : nb.of(i)) {
+      const Vec<D> r = pts.position[j] - pts.position[i];
+      Vec<D> du = u[j] - u[i];
+      if (pts.kind[j] == PointKind::wall) du = pts.wall_normal[j].dot(du) * pts.wall_normal[j];
+      s.noalias() += wendland_c2(r.norm() / ops.radius) * du * r.transpose();
+    }
+    grad[i] = s * ops.renormalisation[i];
+  }
+  return grad;
+}
+
+template <int D>
 std::vector<double> laplacian(const Neighbours& nb, const Operators<D>& ops,
                               std::span<const double> f) {
   const Index n = nb.points();
@@ -233,6 +253,12 @@ template std::vector<Vec<2>> gradient<2>(std::span<const Vec<2>>, const Neighbou
                                          const Operators<2>&, std::span<const double>);
 template std::vector<Vec<3>> gradient<3>(std::span<const Vec<3>>, const Neighbours&,
                                          const Operators<3>&, std::span<const double>);
+template std::vector<Mat<2>> slip_velocity_gradient<2>(const PointSet<2>&, const Neighbours&,
+                                                       const Operators<2>&,
+                                                       std::span<const Vec<2>>);
+template std::vector<Mat<3>> slip_velocity_gradient<3>(const PointSet<3>&, const Neighbours&,
+                                                       const Operators<3>&,
+                                                       std::span<const Vec<3>>);
 template std::vector<double> divergence<2>(std::span<const Vec<2>>, const Neighbours&,
                                            const Operators<2>&, std::span<const Vec<2>>);
 template std::vector<double> divergence<3>(std::span<const Vec<3>>, const Neighbours&,

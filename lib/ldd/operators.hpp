@@ -84,6 +84,18 @@ template <int D>
 std::vector<double> divergence(std::span<const Vec<D>> positions, const Neighbours& neighbours,
                                const Operators<D>& ops, std::span<const Vec<D>> u);
 
+/// ⟨∇u⟩_i, (∇u)_ab = ∂u_a/∂x_b, of eq. 6 for every point (zero at isolated points), with the
+/// walls seen as slip walls: across a wall node j only the normal part of the velocity
+/// difference counts, u_j − u_i → n_j n_j·(u_j − u_i) [CHOICE]. The wall node carries the
+/// no-penetration condition; its tangential velocity is the no-slip condition of the viscous
+/// term only. With the full difference a fluid film sliding at U over nodes at rest had a
+/// divergence of order U/dx wherever the wall nodes under it were not symmetric (at the edge of
+/// the wetted floor), and the PPE turned that into kPa pressures that drove the tip of the K&O
+/// dam break at L/40 to 5 m/s (the Ritter limit 2√(gH) is 3.4 m/s).
+template <int D>
+std::vector<Mat<D>> slip_velocity_gradient(const PointSet<D>& points, const Neighbours& neighbours,
+                                           const Operators<D>& ops, std::span<const Vec<D>> u);
+
 /// ⟨∇²f⟩_i = Σ c_ij (f_j − f_i) for every point (zero at isolated points).
 template <int D>
 std::vector<double> laplacian(const Neighbours& neighbours, const Operators<D>& ops,

@@ -191,7 +191,9 @@ PoissonData ppe_data(const PointSet<D>& pts, const Neighbours& nb, const Operato
   HM_ASSERT(opt.dt > 0.0 && opt.dx > 0.0, "ppe: dt {} and dx {} must be > 0", opt.dt, opt.dx);
   const Index n = pts.size();
   PoissonData d;
-  d.source = divergence<D>(pts.position, nb, ops, predicted);
+  const auto grad = slip_velocity_gradient<D>(pts, nb, ops, predicted);
+  d.source.resize(static_cast<std::size_t>(n));
+  for (Index i = 0; i < n; ++i) d.source[i] = grad[i].trace();
   d.neumann.assign(static_cast<std::size_t>(n), 0.0);
   d.dirichlet.assign(static_cast<std::size_t>(n), 0.0);
   const double rho = opt.density;
