@@ -207,6 +207,7 @@ ldd::FlowOptions<D> flow_options(const io::Scene& scene) {
   o.pbd_relaxation = solver.number("pbd_relaxation");
   o.pbd_distance = solver.number("pbd_distance");
   o.smoothing = solver.number("smoothing");
+  o.shifting = solver.number("shifting");
   o.volume_relaxation = solver.number("volume_relaxation");
   o.release_wall_tension = solver.boolean("release_wall_tension");
   o.ppe.tolerance = solver.number("ppe_tolerance");

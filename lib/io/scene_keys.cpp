@@ -271,6 +271,10 @@ const std::vector<KeyDecl>& scene_keys() {
       number("solver.pbd_distance", "0.95", "1", 0, 1,
              "PBD minimum pair distance d0 in units of dx (fluid–wall: d0/2)", simulate_stage,
              true),
+      number("solver.shifting", "0", "1", 0, 100,
+             "coefficient A of the Fickian shifting after PBD, δr = −A dx |u| Δt ∇(n/n0) (0 "
+             "disables)",
+             simulate_stage),
       number("solver.smoothing", "0.5", "1", 0, 1,
              "XSPH velocity smoothing ε over fluid neighbours (0 disables)", simulate_stage),
       number("solver.volume_relaxation", "0.05", "1", 0, 1,

@@ -24,4 +24,11 @@ inline double wendland_c2(double q) {
   return s2 * s2 * (1.0 + 4.0 * q);
 }
 
+/// dW/dq of wendland_c2: −20 q (1 − q)³ for q < 1, else 0.
+inline double wendland_c2_derivative(double q) {
+  if (q >= 1.0) return 0.0;
+  const double s = 1.0 - q;
+  return -20.0 * q * s * s * s;
+}
+
 }  // namespace hm::ldd

@@ -66,6 +66,9 @@ struct FlowOptions {
   double pbd_relaxation = 1.5;  ///< ω of the Jacobi iteration
   double pbd_distance = 0.95;   ///< d0 / dx
   double pbd_clamp = 0.1;       ///< largest shift per iteration / dx
+  /// A of the Fickian shifting after PBD (Lind et al. 2012, with the coefficient of Skillen et
+  /// al. 2013): δr_i = −A dx |u_i| Δt ∇C_i, C_i = n_i/n0 over fluid neighbours; 0 disables.
+  double shifting = 0.0;
   // Stabiliser and volume
   double smoothing = 0.5;            ///< ε of the XSPH smoothing (0 disables)
   double volume_relaxation = 0.05;   ///< α of the PPE volume source (0 disables)
@@ -176,7 +179,10 @@ class FlowSolver {
  private:
   void advect(double dt);
   void keep_clear_of_walls(bool all_points);
+  bool came_through(const WallMesh<D>& wall, Index i) const;
   void regularise_positions(double dt);
+  void shift_down_concentration_gradient(double dt, std::vector<Vec<D>>& total);
+  Vec<D> concentration_gradient(Index i, Vec<D>& offset, bool& near_surface) const;
   double typical_step() const;
   void rebuild_neighbours();
   void classify_points();
@@ -193,6 +199,7 @@ class FlowSolver {
   void update_monitors(double dt, std::span<const Vec<D>> old_velocity, StepMonitor& m);
   void remove_escaped_points();
   void resort();
+  std::pair<Vec<D>, Vec<D>> wall_box() const;  ///< the walls' present bounding box [m]
   void check_divergence(const StepMonitor& m) const;
 
   FlowOptions<D> options_;
@@ -203,7 +210,8 @@ class FlowSolver {
   std::vector<Mat<D>> grad_u_;         ///< ∇u per point from the last step (Taylor transport)
   std::vector<double> wall_distance_;  ///< lower bound of each fluid point's wall clearance [m]
   std::vector<double> acceleration_;   ///< |Δu/Δt| of the last step per point [m/s²]
-  Vec<D> box_lower_, box_upper_;       ///< wall bounding box [m]
+  std::vector<Vec<D>> step_start_;     ///< positions before this step's advection [m]
+  std::vector<char> outside_;          ///< found behind a wall it did not cross (this step)
   double n0_ = 0.0;
   double time_ = 0.0;
   long step_ = 0;

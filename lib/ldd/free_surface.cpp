@@ -99,7 +99,7 @@ bool beyond_the_fluid(const PointSet<D>& pts, const Neighbours& nb, Index i, con
   const Vec<D> tangent = nu - nu.dot(nw) * nw;
   return tangent.norm() >= opt.min_wall_tangent &&
          !cone_covered<D>(pts, nb, i, tangent.normalized(), cos_wall_cone,
-                                         opt.cover_reach * nb.radius);
+                          opt.cover_reach * nb.radius);
 }
 
 template <int D>
@@ -172,8 +172,7 @@ FreeSurfaceReport detect_free_surface(PointSet<D>& pts, const Neighbours& nb,
       if (on > 0.0) {
         const Vec<D> nu = off_the_walls<D>(pts, nb, i, -m.offset / on);
         open = nu.norm() >= opt.min_wall_tangent &&
-               !cone_covered<D>(pts, nb, i, nu.normalized(), cos_cone,
-                                        opt.cover_reach * nb.radius);
+               !cone_covered<D>(pts, nb, i, nu.normalized(), cos_cone, opt.cover_reach * nb.radius);
       }
       if (open) {
         t = PointType::surface;
