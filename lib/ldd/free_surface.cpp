@@ -4,6 +4,8 @@
 #include <numbers>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
+
 #include "core/errors.hpp"
 
 namespace hm::ldd {
@@ -70,6 +72,7 @@ template <int D>
 struct FluidMoments {
   double density = 0.0, moment = 0.0;
   Vec<D> offset = Vec<D>::Zero();
+  Mat<D> second = Mat<D>::Zero();  ///< Σ W r ⊗ r
 };
 
 template <int D>
@@ -82,8 +85,21 @@ FluidMoments<D> fluid_moments(const PointSet<D>& pts, const Neighbours& nb, Inde
     m.density += w;
     m.moment += w * d;
     m.offset += w * r;
+    m.second.noalias() += w * r * r.transpose();
   }
   return m;
+}
+
+/// A fluid sheet or filament: the fluid neighbours alone span fewer than D directions
+/// (λ_min of D·A/tr A below λ_c). Returns the direction across it (the eigenvector of λ_min),
+/// or zero when the fluid stencil is not degenerate.
+template <int D>
+Vec<D> across_a_sheet(const FluidMoments<D>& m, double lambda_c) {
+  const double trace = m.second.trace();
+  if (trace <= 0.0) return Vec<D>::Zero();
+  const Eigen::SelfAdjointEigenSolver<Mat<D>> eigen(m.second * (D / trace));
+  if (eigen.eigenvalues()[0] >= lambda_c) return Vec<D>::Zero();
+  return eigen.eigenvectors().col(0);
 }
 
 /// Item 4: wall node i lies beyond the fluid along the wall — the outward direction of its fluid
@@ -165,15 +181,21 @@ FreeSurfaceReport detect_free_surface(PointSet<D>& pts, const Neighbours& nb,
     const bool candidate =
         m.density < beta * opt.reference_density || ratio > tau || ops.lambda_min[i] < opt.lambda_c;
     PointType t = PointType::interior;
-    if (candidate) {
+    const Vec<D> sheet = across_a_sheet<D>(m, opt.lambda_c);
+    if (candidate || sheet.squaredNorm() > 0.0) {
       ++candidates;
       // A degenerate stencil with a vanishing offset (a symmetric filament) is a surface too.
       bool open = ops.lambda_min[i] < opt.lambda_c;
-      if (on > 0.0) {
-        const Vec<D> nu = off_the_walls<D>(pts, nb, i, -m.offset / on);
-        open = nu.norm() >= opt.min_wall_tangent &&
+      auto open_towards = [&](const Vec<D>& outward) {
+        const Vec<D> nu = off_the_walls<D>(pts, nb, i, outward);
+        return nu.norm() >= opt.min_wall_tangent &&
                !cone_covered<D>(pts, nb, i, nu.normalized(), cos_cone, opt.cover_reach * nb.radius);
-      }
+      };
+      if (on > 0.0) open = open_towards(-m.offset / on);
+      // A sheet one point thick (a run-up jet along a wall) is open on both faces, whatever its
+      // offset says; the wall nodes beside it made the whole stencil look regular, and a
+      // filament 2 dx from the K&O right wall at L/80 kept interior rows until it blew up.
+      if (!open && sheet.squaredNorm() > 0.0) open = open_towards(sheet) || open_towards(-sheet);
       if (open) {
         t = PointType::surface;
         ++surface;
