@@ -1,6 +1,9 @@
 // Free-surface detection on a disk, a sphere and a water column.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
+
 #include "clouds.hpp"
 #include "tank.hpp"
 
@@ -74,6 +77,39 @@ TEST(LddFreeSurface, JitteredWaterColumn2D) {
               false_pos);
   EXPECT_EQ(missed, 0);
   EXPECT_LE(false_pos, 0.005 * inside);
+}
+
+// A run-up jet: a vertical filament of fluid one point thick, 1.5 dx from a wall (wall nodes at
+// spacing dx, normal −x, towards the filament), points ≈ 0.6 dx apart along it. Every point of the
+// filament is SURFACE: the wall nodes make the whole stencil regular (λ_min of all neighbours
+// well above λ_c) and the number density is above n0, so only the fluid-only moment tells.
+TEST(LddFreeSurface, FilamentBesideAWall) {
+  const double dx = 0.01, h = 2.5 * dx;
+  PointSet<2> pts;
+  for (int k = 0; k <= 50; ++k)  // unevenly spaced: the offset along the filament is not zero
+    pts.add_fluid(Vec<2>(0.0, (0.6 * k + 0.15 * std::sin(1.7 * k)) * dx));
+  for (double y = -0.05; y <= 0.35; y += dx)
+    pts.add_wall_node(Vec<2>(1.5 * dx, y), Vec<2>(-1, 0), WallHost<2>{});
+  const auto nb = find_neighbours<2>(pts.position, h);
+  const auto ops = compute_operators<2>(pts.position, nb);
+  FreeSurfaceOptions fs;
+  fs.reference_density = lattice_number_density<2>(dx, h);
+  detect_free_surface<2>(pts, nb, ops, fs);
+  Index filament = 0, missed = 0;
+  double lambda = 1.0;
+  for (Index i = 0; i < pts.size(); ++i) {
+    if (pts.kind[i] != PointKind::fluid) continue;
+    ++filament;
+    missed += pts.type[i] == PointType::surface ? 0 : 1;
+    const double y = pts.position[i].y();
+    if (y > h && y < 0.29 - h) lambda = std::min(lambda, ops.lambda_min[i]);  // away from its ends
+  }
+  std::printf(
+      "filament: %d points, %d not surface; smallest λ_min with the wall nodes %.3f (away from the "
+      "ends)\n",
+      filament, missed, lambda);
+  EXPECT_GT(lambda, fs.lambda_c);  // the whole stencil is not degenerate
+  EXPECT_EQ(missed, 0);
 }
 
 }  // namespace
