@@ -195,7 +195,7 @@ class FlowSolver {
   void project(double dt, std::span<const Vec<D>> predicted, std::span<const Vec<D>> viscous,
                StepMonitor& m);
   void correct(double dt, std::span<const Vec<D>> predicted);
-  void smooth_velocity(double dt);
+  void smooth_velocity(double dt, double stable_step);
   void update_monitors(double dt, std::span<const Vec<D>> old_velocity, StepMonitor& m);
   void remove_escaped_points();
   void resort();
