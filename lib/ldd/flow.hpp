@@ -182,7 +182,8 @@ class FlowSolver {
   bool came_through(const WallMesh<D>& wall, Index i) const;
   void regularise_positions(double dt);
   void shift_down_concentration_gradient(double dt, std::vector<Vec<D>>& total);
-  Vec<D> concentration_gradient(Index i, Vec<D>& offset, bool& near_surface) const;
+  Vec<D> concentration_gradient(Index i, bool& near_surface) const;
+  void transport_velocity(std::span<const Vec<D>> shift);
   double typical_step() const;
   void rebuild_neighbours();
   void classify_points();
