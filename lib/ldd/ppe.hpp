@@ -8,8 +8,9 @@
 //    value (a closed box) is singular: one interior point is pinned to p = 0.
 //  * the PPE sources of the projection: s_i = (ρ/Δt) ∇·u*_i − α (ρ/Δt²)(n_i − n_0)/n_0 (the
 //    volume term only at full-stencil points), q_i = ρ n_i·(g + ν∇²u − A^w)_i.
-// Solved with BiCGSTAB (Eigen) and a Jacobi or ILU (IncompleteLUT) preconditioner (by default
-// Jacobi with an ILU fallback, see Preconditioner), warm-started
+// Solved with BiCGSTAB and a Jacobi or ILU preconditioner (by default Jacobi with an ILU
+// fallback, see Preconditioner): Jacobi, which the unit diagonal makes the identity, by the
+// OpenMP BiCGSTAB of ldd/bicgstab.hpp; ILU by Eigen's BiCGSTAB with IncompleteLUT. Warm-started
 // from the previous pressure; iterations and residual are returned, not thrown.
 #include <span>
 #include <vector>
