@@ -5,21 +5,30 @@
 //   1. wall nodes follow their walls (position, normal, velocity, acceleration at t^{n+1});
 //   2. ADVECT fluid points r ← r + Δt u^n;
 //   3. CLEARANCE against the wall meshes: a point closer than d0/2 to a wall is put back at d0/2,
-//      its velocity towards the wall (relative to the wall) removed;
+//      its velocity towards the wall (relative to the wall) removed; a point behind a wall it
+//      did not cross this step (a jet over an open wall end) has left the domain and is removed;
 //   4. PBD (§1.4): Jacobi iterations of the repulsive pair constraint |r_ij| ≥ d0 (fluid–fluid,
 //      both move) and |r_ij| ≥ d0/2 (fluid–wall node, the fluid point moves), clearance after
-//      each; the velocity is carried to the shifted position, u ← u + (∇u)·δr;
+//      each; then, with solver.shifting > 0, Fickian shifting down the concentration gradient
+//      (wall nodes standing for mirrored lattice columns, points within h of the free surface
+//      left alone), which refills what PBD cannot (a drained stagnation corner); the velocity is
+//      carried to the shifted position, u ← u + (∇u)·δr, with ∇u seen through slip walls;
 //   5. NEIGHBOURS within h; dry wall nodes and wall nodes beyond the fluid inactive; pairs through
 //      thin walls cut;
 //   6. OPERATORS (eqs. 6–9, WLS Laplacian on one-sided stencils, Tikhonov on degenerate ones);
-//   7. FREE SURFACE (§1.8, hysteresis on the previous types);
+//   7. FREE SURFACE (§1.8, hysteresis on the previous types; a sheet one point thick is surface
+//      on both faces, whatever the wall nodes beside it);
 //   8. PREDICTOR u* = u + Δt(g + ν∇²u), viscosity explicit or implicit (no-slip wall velocity in
 //      the viscous term only);
-//   9. PPE (§1.9) with the relaxed volume source; wall nodes in tension become Dirichlet and the
-//      system is solved again (§0.2 item 6);
+//   9. PPE (§1.9) with the relaxed volume source, its divergence through slip walls (across a
+//      wall node only the normal velocity difference counts: the node's tangential velocity is
+//      the no-slip condition of the viscous term, and in the divergence it drove a sliding
+//      surge tip past the Ritter speed); wall nodes in tension become Dirichlet and the system
+//      is solved again (§0.2 item 6);
 //  10. CORRECTOR u = u* − (Δt/ρ)∇p; isolated points are ballistic;
 //  11. SMOOTHING (the stabiliser of §0.1 D4): XSPH over fluid neighbours only, renormalised,
-//      u_i += ε Σ_j (W_ij/Σ_k W_ik)(u_j − u_i) — walls exert no friction through it;
+//      u_i += ε' Σ_j (W_ij/Σ_k W_ik)(u_j − u_i) — walls exert no friction through it; ε' =
+//      ε·min(1, Δt/Δt_stable), so a step cut short for an output time smooths less;
 //  12. monitors: ∇·u after the step, volume from the number density, escaped points.
 // SI units: m, s, kg/m³, Pa (gauge), m²/s.
 #include <array>
