@@ -271,7 +271,7 @@ const std::vector<KeyDecl>& scene_keys() {
       number("solver.pbd_distance", "0.95", "1", 0, 1,
              "PBD minimum pair distance d0 in units of dx (fluid–wall: d0/2)", simulate_stage,
              true),
-      number("solver.shifting", "0", "1", 0, 100,
+      number("solver.shifting", "2", "1", 0, 100,
              "coefficient A of the Fickian shifting after PBD, δr = −A dx |u| Δt ∇(n/n0) (0 "
              "disables)",
              simulate_stage),

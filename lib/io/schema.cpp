@@ -278,7 +278,8 @@ const SchemaSpec& results_schema() {
            DType::f64,
            {"n_steps"},
            "1",
-           "V/V0 - 1 from the mean interior number density"},
+           "V/V0 - 1 of the volume the fluid fills (half-density region of its kernel "
+           "density), V0 scaled by the share of points not escaped"},
           {ds::monitor_max_speed, DType::f64, {"n_steps"}, "m/s", "max |u| of fluid points"},
           {ds::monitor_escaped,
            DType::i64,

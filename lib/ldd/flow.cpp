@@ -12,6 +12,7 @@
 #include <Eigen/SparseCore>
 
 #include "core/log.hpp"
+#include "ldd/volume.hpp"
 
 namespace hm::ldd {
 namespace {
@@ -142,6 +143,11 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
   wall_distance_.assign(n, -1.0);  // unknown: checked below
   resort();
   keep_clear_of_walls(true);
+  std::vector<Vec<D>> initial;
+  for (Index i = 0; i < points_.size(); ++i)
+    if (is_fluid(points_, i)) initial.push_back(points_.position[i]);
+  initial_fluid_ = static_cast<Index>(initial.size());
+  initial_volume_ = fluid_volume<D>(initial, o.dx, h);
   rebuild_neighbours();
   classify_points();
 
@@ -734,27 +740,15 @@ void FlowSolver<D>::smooth_velocity(double dt, double stable_step) {
 // Monitors and divergence
 
 template <int D>
-double FlowSolver<D>::mean_interior_density() const {
-  // Interior points with a full stencil: no wall node within 2 dx, no Dirichlet neighbour.
-  double sum = 0.0;
-  long count = 0;
-  const double near = 2.0 * options_.dx;
-#pragma omp parallel for schedule(static) reduction(+ : sum, count)
-  for (Index i = 0; i < points_.size(); ++i) {
-    if (!is_fluid(points_, i) || points_.type[i] != PointType::interior) continue;
-    bool full = true;
-    for (Index j : neighbours_.of(i)) {
-      const auto t = points_.type[j];
-      if (t == PointType::surface || t == PointType::isolated) full = false;
-      if (!is_fluid(points_, j) && (points_.position[j] - points_.position[i]).norm() < near)
-        full = false;
-      if (!full) break;
-    }
-    if (!full) continue;
-    sum += ops_.number_density[i];
-    ++count;
-  }
-  return count > 0 ? sum / static_cast<double>(count) : n0_;
+double FlowSolver<D>::volume_drift() const {
+  std::vector<Vec<D>> fluid;
+  fluid.reserve(static_cast<std::size_t>(points_.size()));
+  for (Index i = 0; i < points_.size(); ++i)
+    if (is_fluid(points_, i)) fluid.push_back(points_.position[i]);
+  const double volume = fluid_volume<D>(fluid, options_.dx, support());
+  const double expected =
+      initial_volume_ * static_cast<double>(fluid.size()) / static_cast<double>(initial_fluid_);
+  return expected > 0.0 ? volume / expected - 1.0 : 0.0;
 }
 
 template <int D>
@@ -788,7 +782,7 @@ void FlowSolver<D>::update_monitors(double dt, std::span<const Vec<D>> old_veloc
   m.isolated = isolated;
   m.wall_active = active;
   m.escaped = escaped_;
-  m.volume_drift = n0_ / mean_interior_density() - 1.0;
+  m.volume_drift = volume_drift();
   last_max_speed_ = max_speed;
 }
 

@@ -77,7 +77,7 @@ struct FlowOptions {
   double pbd_clamp = 0.1;       ///< largest shift per iteration / dx
   /// A of the Fickian shifting after PBD (Lind et al. 2012, with the coefficient of Skillen et
   /// al. 2013): δr_i = −A dx |u_i| Δt ∇C_i, C_i = n_i/n0 over fluid neighbours; 0 disables.
-  double shifting = 0.0;
+  double shifting = 2.0;
   // Stabiliser and volume
   double smoothing = 0.5;            ///< ε of the XSPH smoothing (0 disables)
   double volume_relaxation = 0.05;   ///< α of the PPE volume source (0 disables)
@@ -124,8 +124,9 @@ struct StepMonitor {
   double ppe_residual = 0.0;
   bool ppe_converged = true;
   double max_divergence = 0.0;  ///< max |∇·u^{n+1}| over interior fluid points [1/s]
-  /// V/V0 − 1 from the mean number density of full-stencil interior points against that of the
-  /// initial lattice, n0: V/V0 = n0 / mean n_i.
+  /// V/V0 − 1 of the volume the fluid fills (ldd/volume.hpp, the half-density region), V0 the
+  /// initial volume scaled by the share of points still in the domain (escaped points carry
+  /// their volume away).
   double volume_drift = 0.0;
   double max_speed = 0.0;  ///< max |u| of fluid points [m/s]
   Index escaped = 0;       ///< fluid points removed so far (left the wall box)
@@ -200,7 +201,7 @@ class FlowSolver {
   std::vector<Vec<D>> predict(double dt, std::vector<Vec<D>>& viscous);
   void solve_implicit_viscosity(double dt, std::vector<Vec<D>>& predicted,
                                 const std::vector<Vec<D>>& viscous);
-  double mean_interior_density() const;
+  double volume_drift() const;
   void set_surface_pressure(std::vector<double>& dirichlet) const;
   void project(double dt, std::span<const Vec<D>> predicted, std::span<const Vec<D>> viscous,
                StepMonitor& m);
@@ -223,6 +224,8 @@ class FlowSolver {
   std::vector<Vec<D>> step_start_;     ///< positions before this step's advection [m]
   std::vector<char> outside_;          ///< found behind a wall it did not cross (this step)
   double n0_ = 0.0;
+  double initial_volume_ = 0.0;  ///< fluid_volume at t0 [m^D]
+  Index initial_fluid_ = 0;
   double time_ = 0.0;
   long step_ = 0;
   Index escaped_ = 0;
