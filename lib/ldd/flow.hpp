@@ -126,7 +126,7 @@ struct StepMonitor {
   double max_divergence = 0.0;  ///< max |∇·u^{n+1}| over interior fluid points [1/s]
   /// V/V0 − 1 of the volume the fluid fills (ldd/volume.hpp, the half-density region), V0 the
   /// initial volume scaled by the share of points still in the domain (escaped points carry
-  /// their volume away).
+  /// their volume away). Measured at steps 1, 11, 21, …; the last value in between.
   double volume_drift = 0.0;
   double max_speed = 0.0;  ///< max |u| of fluid points [m/s]
   Index escaped = 0;       ///< fluid points removed so far (left the wall box)
@@ -224,6 +224,8 @@ class FlowSolver {
   std::vector<Vec<D>> step_start_;     ///< positions before this step's advection [m]
   std::vector<char> outside_;          ///< found behind a wall it did not cross (this step)
   double n0_ = 0.0;
+  static constexpr long volume_interval = 10;  ///< steps between volume measurements
+  double last_volume_drift_ = 0.0;
   double initial_volume_ = 0.0;  ///< fluid_volume at t0 [m^D]
   Index initial_fluid_ = 0;
   double time_ = 0.0;

@@ -54,7 +54,6 @@ double fluid_volume(std::span<const Vec<D>> fluid, double dx, double h) {
   // Grid nodes at spacing dx/2; each cell of size h is scanned only if a point lies within one
   // cell of it.
   const double s = 0.5 * dx, threshold = 0.5 * bulk_kernel_density<D>(dx, h);
-  const int per_cell = static_cast<int>(std::ceil(h / s));
   long inside = 0;
 #pragma omp parallel for schedule(dynamic, 16) reduction(+ : inside)
   for (long k = 0; k < total_cells; ++k) {
@@ -64,12 +63,16 @@ double fluid_volume(std::span<const Vec<D>> fluid, double dx, double h) {
       c[a] = rest % cells[a];
       rest /= cells[a];
     }
-    // The points of the 3^D cells around c.
-    std::vector<const Vec<D>*> near;
+    // The points of the 3^D cells around c, those of c first (a node's density mostly comes
+    // from its own cell, and the sum below stops once it reaches the threshold).
+    thread_local std::vector<const Vec<D>*> near;
+    near.clear();
+    const long own = linear(c);
+    for (long j = start[own]; j < start[own + 1]; ++j) near.push_back(&sorted[j]);
     Cell o = Cell::Constant(-1);
     while (true) {
       Cell q = c + o;
-      bool valid = true;
+      bool valid = !o.isZero();
       for (int a = 0; a < D; ++a) valid = valid && q[a] >= 0 && q[a] < cells[a];
       if (valid) {
         const long l = linear(q);
@@ -88,7 +91,6 @@ double fluid_volume(std::span<const Vec<D>> fluid, double dx, double h) {
                          static_cast<long>(std::ceil((upper[a] - lower[a]) / s)));
     }
     Eigen::Matrix<long, D, 1> m = first;
-    (void)per_cell;
     while (true) {
       bool empty = false;
       for (int a = 0; a < D; ++a) empty = empty || m[a] >= last[a];
@@ -96,7 +98,12 @@ double fluid_volume(std::span<const Vec<D>> fluid, double dx, double h) {
         Vec<D> x;
         for (int a = 0; a < D; ++a) x[a] = lower[a] + (m[a] + 0.5) * s;
         double density = 0.0;
-        for (const Vec<D>* p : near) density += wendland_c2((*p - x).norm() / h);
+        for (const Vec<D>* p : near) {
+          const double r2 = (*p - x).squaredNorm();
+          if (r2 >= h * h) continue;
+          density += wendland_c2(std::sqrt(r2) / h);
+          if (density >= threshold) break;
+        }
         inside += density >= threshold;
       }
       int a = 0;
