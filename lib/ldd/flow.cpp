@@ -397,14 +397,7 @@ void FlowSolver<D>::regularise_positions(double dt) {
       any = true;
     }
     if (!any) break;
-#pragma omp parallel for schedule(static)
-    for (Index i = 0; i < n; ++i) {
-      if (!is_fluid(points_, i)) continue;
-      points_.position[i] += shift[i];
-      total[i] += shift[i];
-      wall_distance_[i] -= shift[i].norm();
-    }
-    keep_clear_of_walls(false);
+    move_points(shift, total);
   }
   if (o.shifting > 0.0) shift_down_concentration_gradient(dt, total);
   // The velocity is carried to the shifted position (first-order Taylor, Lind et al. 2012).
@@ -478,6 +471,13 @@ void FlowSolver<D>::shift_down_concentration_gradient(double dt, std::vector<Vec
     if (length > max_shift) delta *= max_shift / length;
     shift[i] = delta;
   }
+  move_points(shift, total);
+}
+
+template <int D>
+void FlowSolver<D>::move_points(std::span<const Vec<D>> shift, std::vector<Vec<D>>& total) {
+  // Fluid points move by `shift` (added to `total`), then keep clear of the walls.
+  const Index n = points_.size();
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < n; ++i) {
     if (!is_fluid(points_, i)) continue;

@@ -194,6 +194,7 @@ class FlowSolver {
   void shift_down_concentration_gradient(double dt, std::vector<Vec<D>>& total);
   Vec<D> concentration_gradient(Index i, bool& near_surface) const;
   void transport_velocity(std::span<const Vec<D>> shift);
+  void move_points(std::span<const Vec<D>> shift, std::vector<Vec<D>>& total);
   double typical_step() const;
   void rebuild_neighbours();
   void classify_points();

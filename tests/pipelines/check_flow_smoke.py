@@ -123,13 +123,36 @@ def dambreak_koshizuka(c, scene, out, source, build):
             print("      " + line)
 
 
+def running_mean(t, v, window):
+    """Mean of the piecewise-constant signal (value v[k] over (t[k-1], t[k]]) over (t − window, t]."""
+    out = []
+    for k in range(len(t)):
+        start, total, j = t[k] - window, 0.0, k
+        while j > 0 and t[j - 1] > start:
+            total += v[j] * (t[j] - t[j - 1])
+            j -= 1
+        if j > 0:
+            total += v[j] * (t[j] - start)
+        out.append(total / window)
+    return out
+
+
 def dambreak_lobovsky(c, scene, out, source, build):
+    """Impact time (asserted) and the first-impact peaks of p1 and p3, per step and averaged over
+    one contact window w = dx / (2√(gH)): the time the surge front (at the Ritter speed) takes to
+    cross one point spacing. An incompressible impact arrives as one pressure impulse per point
+    that reaches the wall, of height ≈ ρU²/C_u, so the per-step peak is set by the CFL number, not
+    by the flow; over w the impulses average to the pressure of the flow, and w → 0 under
+    refinement. The experiment is the median of ~100 repetitions."""
     check_run(c, scene, out, build)
     H = scene["fluid"]["region"][0]["size"][1]  # column height [m]
+    dx = scene["fluid"]["dx"]
     rho_g_h = scene["fluid"]["density"] * GRAVITY * H
     scale = math.sqrt(GRAVITY / H)  # T = t·√(g/H)
+    window = dx / (2 * math.sqrt(GRAVITY * H))
     p = read_probes(out)
-    T = [t * scale for t in p["t [s]"]]
+    t = p["t [s]"]
+    T = [x * scale for x in t]
     reference = source / "data/reference/dambreak_lobovsky_2014"
     sensors = {n: read_xy(reference / f"pysph_lobovsky2014_H300_sensor{n}.csv") for n in (1, 3)}
     p1 = list(zip(T, [v / rho_g_h for v in p["p1.p [Pa]"]]))
@@ -139,14 +162,20 @@ def dambreak_lobovsky(c, scene, out, source, build):
         c.expect(abs(t_sim / t_exp - 1) < 0.05,
                  f"impact: p1 first exceeds 0.5·ρgH at t·√(g/H) = {t_sim:.3f} "
                  f"(experiment {t_exp:.3f}: {100 * (t_sim / t_exp - 1):+.1f} %) within 5 %")
-    impact_end = 3.0  # the first impact; the plunging wave returns at ≈ 5.9
+    first_impact = {1: (2.3, 2.7), 3: (2.5, 3.0)}  # T windows around the experiment's peaks
     for n in (1, 3):
-        sim = [(x, v / rho_g_h) for x, v in zip(T, p[f"p{n}.p [Pa]"]) if x < impact_end]
-        exp = [q for q in sensors[n] if q[0] < impact_end]
-        (ts, ps), (te, pe) = max(sim, key=lambda q: q[1]), max(exp, key=lambda q: q[1])
-        print(f"      p{n} first-impact peak (t·√(g/H) < {impact_end}): {ps:.2f} ρgH at {ts:.3f} "
-              f"(experiment {pe:.2f} at {te:.3f}: {100 * (ps / pe - 1):+.0f} %, "
-              f"{100 * (ts / te - 1):+.1f} % in time)")
+        values = [v / rho_g_h for v in p[f"p{n}.p [Pa]"]]
+        lo, hi = first_impact[n]
+        te, pe = max((q for q in sensors[n] if lo <= q[0] <= hi), key=lambda q: q[1])
+        for label, signal in (("per step", values),
+                              (f"over w = {1000 * window:.2f} ms", running_mean(t, values, window))):
+            ks = [k for k in range(len(T)) if lo <= T[k] <= hi]
+            if not ks:
+                continue
+            k = max(ks, key=lambda k: signal[k])
+            print(f"      p{n} first-impact peak ({label}, T in [{lo}, {hi}]): {signal[k]:.2f} ρgH "
+                  f"at {T[k]:.3f} (experiment {pe:.2f} at {te:.3f}: {100 * (signal[k] / pe - 1):+.0f} %,"
+                  f" {100 * (T[k] / te - 1):+.1f} % in time)")
 
 
 def sloshing_first_mode_period(length, depth):
