@@ -299,7 +299,9 @@ double FlowSolver<D>::typical_step() const {
 
 template <int D>
 bool FlowSolver<D>::came_through(const WallMesh<D>& wall, Index i) const {
-  // Without a step start (the set-up) every point is taken to have come through.
+  // The point crossed the wall this step, or the wall swept over it (the walls are at t + Δt
+  // before the step starts). Without a step start (the set-up) every point is taken to have
+  // come through.
   if (step_start_.size() != static_cast<std::size_t>(points_.size())) return true;
   return wall.crosses(step_start_[i], points_.position[i]) ||
          wall.closest(step_start_[i]).signed_distance < 0.0;
@@ -453,7 +455,8 @@ void FlowSolver<D>::shift_down_concentration_gradient(double dt, std::vector<Vec
   // of 5–10 ρgH (Lobovsky at H/80). Points within h of the free surface are not shifted: their
   // concentration deficit is the missing air, not a void. Moving them along the surface only
   // (Lind et al.) still let the layers below push the surface out (K&O at L/20: the interior
-  // number density fell 5 %; with them left alone 2.4 %). Measured at Lobovsky H/40, sensor 1
+  // number density fell 5 %; with them left alone 2.4 %; ldd/volume.hpp says why that monitor
+  // was replaced). Measured at Lobovsky H/40, sensor 1
   // after the impact: RMS deviation from its 5 ms running mean 0.47 → 0.17 ρgH, 13 → 0 of 159
   // samples below 0.2 ρgH.
   const auto& o = options_;
