@@ -18,7 +18,8 @@
 #
 # What runs follows the scene: a [structure] section brings mesh → modes → map; a [fluid]
 # section brings simulate (on mesh.h5 when there is a structure, else fsi-simulate meshes the
-# [[wall]]s itself, as fsi-mesh needs a structure).
+# [[wall]]s itself, as fsi-mesh needs a structure); [[load]]s without a [fluid] bring a
+# structure-only simulate on mesh.h5 and modes.h5.
 ROOT     := $(abspath $(dir $(lastword $(MAKEFILE_LIST)))/..)
 CASE     ?= $(notdir $(abspath $(CURDIR)))
 VARIANT  ?= full
@@ -28,6 +29,9 @@ OUT      := $(ROOT)/out/$(CASE)/$(VARIANT)
 SCENE    := $(abspath $(firstword $(wildcard scene.$(VARIANT).toml) scene.toml))
 HAS_STRUCTURE := $(shell grep -q '^\[structure\]' $(SCENE) && echo yes)
 HAS_FLUID     := $(shell grep -q '^\[fluid\]' $(SCENE) && echo yes)
+HAS_LOADS     := $(shell grep -q '^\[\[load\]\]' $(SCENE) && echo yes)
+# A structure-only run: [[load]]s on the structure and no [fluid] (fsi-simulate on modes.h5).
+STRUCTURE_RUN := $(if $(HAS_FLUID),,$(HAS_LOADS))
 
 FSI_MESH     := $(BIN)/fsi-mesh/fsi-mesh
 FSI_MODES    := $(BIN)/fsi-modes/fsi-modes
@@ -37,7 +41,7 @@ FSI_INSPECT  := $(BIN)/fsi-inspect/fsi-inspect
 
 .PHONY: all mesh modes map simulate summary clean FORCE
 
-all: $(if $(HAS_STRUCTURE),map) $(if $(HAS_FLUID),simulate) summary
+all: $(if $(HAS_STRUCTURE),map) $(if $(or $(HAS_FLUID),$(STRUCTURE_RUN)),simulate) summary
 mesh: $(OUT)/mesh.h5
 modes: $(OUT)/modes.h5
 map: $(OUT)/mapped.h5
@@ -54,13 +58,14 @@ $(OUT)/mapped.h5: $(OUT)/modes.h5 FORCE
 	$(FSI_MAP) $(SCENE) --modes $(OUT)/modes.h5 -o $@ --if-stale
 
 # The flow; probes.csv and snapshots/ (ParaView: snapshots/flow.xdmf) land next to results.h5.
-$(OUT)/results.h5: $(if $(HAS_STRUCTURE),$(OUT)/mesh.h5) FORCE
+# A structure-only run takes the mode set as well (--modes).
+$(OUT)/results.h5: $(if $(HAS_STRUCTURE),$(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),$(OUT)/modes.h5) FORCE
 	@mkdir -p $(OUT)
-	$(FSI_SIMULATE) $(SCENE) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) -o $@ --if-stale
+	$(FSI_SIMULATE) $(SCENE) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),--modes $(OUT)/modes.h5) -o $@ --if-stale
 
 FORCE:
 
-summary: $(if $(HAS_STRUCTURE),$(OUT)/modes.h5) $(if $(HAS_FLUID),$(OUT)/results.h5)
+summary: $(if $(HAS_STRUCTURE),$(OUT)/modes.h5) $(if $(or $(HAS_FLUID),$(STRUCTURE_RUN)),$(OUT)/results.h5)
 	@$(foreach artefact,$^,$(FSI_INSPECT) $(artefact);)
 
 clean:

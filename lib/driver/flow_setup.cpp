@@ -133,6 +133,11 @@ std::vector<std::string> scene_wall_names(const io::Scene& scene) {
 
 void validate_probe(const SceneView& probe, const std::vector<std::string>& walls) {
   const std::string kind = probe.string("kind");
+  if (kind == "displacement")
+    input_error(
+        "{}: displacement probes measure a structure; in this version they need a "
+        "structure-only run (a [structure] and [[load]]s, no [fluid])",
+        probe.where("kind"));
   if ((kind == "pressure" || kind == "elevation") && probe.vector("position").size() == 0)
     input_error("{}: a {} probe needs position (m)", probe.where("kind"), kind);
   if (kind == "force") {

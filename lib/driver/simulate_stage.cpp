@@ -11,10 +11,14 @@
 #include "core/text.hpp"
 #include "coupling/probes.hpp"
 #include "coupling/run.hpp"
+#include "coupling/structure_run.hpp"
 #include "driver/flow_setup.hpp"
+#include "driver/structure_io.hpp"
+#include "fem/static_solve.hpp"
 #include "io/artefact.hpp"
 #include "io/probe_csv.hpp"
 #include "ldd/snapshots.hpp"
+#include "motion/time_table.hpp"
 
 namespace hm::driver {
 namespace {
@@ -194,6 +198,157 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
         r.divergence_report);
 }
 
+// ---- structure-only runs ------------------------------------------------------------------
+
+std::vector<std::string> group_names(const mesh::StructureMesh& mesh) {
+  std::vector<std::string> names;
+  for (const auto& [name, nodes] : mesh.node_groups) names.push_back(name);
+  return names;
+}
+
+coupling::LoadHistory load_history(const io::SceneView& load,
+                                   std::vector<std::filesystem::path>& tables) {
+  coupling::LoadHistory h;
+  const std::string kind = load.string("history");
+  if (kind == "ramp") {
+    h.kind = coupling::LoadHistory::Kind::ramp;
+    h.ramp_time = load.number("ramp_time");
+    if (!(h.ramp_time > 0.0))
+      input_error("{}: history = \"ramp\" needs ramp_time > 0 (s)", load.where("history"));
+  } else if (kind == "harmonic") {
+    h.kind = coupling::LoadHistory::Kind::harmonic;
+    h.frequency = load.number("frequency");
+    h.phase = load.number("phase");
+    if (!(h.frequency > 0.0))
+      input_error("{}: history = \"harmonic\" needs frequency > 0 (Hz)", load.where("history"));
+  } else if (kind == "table") {
+    h.kind = coupling::LoadHistory::Kind::table;
+    if (load.string("table").empty())
+      input_error("{}: history = \"table\" needs table, a CSV file (t [s], factor [1])",
+                  load.where("history"));
+    const std::filesystem::path file = load.file_path("table");
+    const motion::TimeTable table = motion::read_time_table(file, {"factor [1]"});
+    h.table_file = file.string();
+    h.table_time = table.time;
+    h.table_factor = table.values.front();
+    tables.push_back(file);
+  }
+  return h;
+}
+
+std::vector<coupling::StructureLoad> scene_loads(const io::Scene& scene,
+                                                 const mesh::StructureMesh& mesh,
+                                                 std::vector<std::filesystem::path>& tables) {
+  std::vector<coupling::StructureLoad> loads;
+  for (const io::SceneView& view : scene.array("load")) {
+    coupling::StructureLoad load;
+    load.name = view.string("name");
+    const std::string group = view.string("group");
+    if (!mesh.node_groups.contains(group)) {
+      const auto names = group_names(mesh);
+      const std::string guess = closest_match(group, names);
+      input_error("{} = \"{}\" is not a node group of the structure mesh: expected one of {}{}",
+                  view.where("group"), group, fmt::join(names, ", "),
+                  guess.empty() ? "" : fmt::format(" (did you mean \"{}\"?)", guess));
+    }
+    const Eigen::VectorXd force = view.vector("force");
+    if (force.size() != mesh.dim)
+      input_error("{} has {} values; a {}-D structure needs {}", view.where("force"), force.size(),
+                  mesh.dim, mesh.dim);
+    load.force = fem::nodal_force(mesh, group, force);
+    load.history = load_history(view, tables);
+    loads.push_back(std::move(load));
+  }
+  return loads;
+}
+
+std::vector<coupling::DisplacementProbe> displacement_probes(const io::Scene& scene,
+                                                             const mesh::StructureMesh& mesh) {
+  std::vector<coupling::DisplacementProbe> probes;
+  for (const io::SceneView& view : scene.array("probe")) {
+    if (view.string("kind") != "displacement")
+      input_error("{} = \"{}\": a structure-only run (no [fluid]) has displacement probes only",
+                  view.where("kind"), view.string("kind"));
+    const Eigen::VectorXd x = view.vector("position");
+    if (x.size() != mesh.dim)
+      input_error("{}: a displacement probe needs position, {} values (m)", view.where("kind"),
+                  mesh.dim);
+    Eigen::Index node = 0;
+    (mesh.nodes.rowwise() - x.transpose()).rowwise().squaredNorm().minCoeff(&node);
+    const double distance = (mesh.nodes.row(node).transpose() - x).norm();
+    spdlog::info("fsi-simulate: probe {}: node {} at [{}] m, {:.3g} m from the position",
+                 view.string("name"), node, fmt::join(mesh.nodes.row(node), ", "), distance);
+    probes.push_back({view.string("name"), node});
+  }
+  return probes;
+}
+
+void write_structure_run(io::ArtefactWriter& w, const coupling::StructureRun& run,
+                         const std::vector<std::string>& columns) {
+  w.write(ds::modal_time, run.time);
+  w.write(ds::modal_coordinates, io::MatrixRM(run.y));
+  w.write(ds::modal_velocities, io::MatrixRM(run.v));
+  w.write(ds::modal_forces, io::MatrixRM(run.F));
+  write_probes(w, run.probes, columns);
+  w.set_attribute(ra::run_status, std::string("completed"));
+  w.set_attribute(ra::divergence_report, std::string());
+  w.set_attribute(ra::wall_seconds, run.wall_seconds);
+  w.set_attribute(ra::steps, static_cast<std::int64_t>(run.steps));
+  w.set_attribute(ra::points, static_cast<std::int64_t>(0));
+  w.set_attribute(ra::end_time, run.time.back());
+  w.set_attribute(ra::snapshots, static_cast<std::int64_t>(0));
+}
+
+void run_structure_only(const io::Scene& scene, const SimulateInputs& inputs,
+                        const std::filesystem::path& output) {
+  if (inputs.mesh.empty() || inputs.modes.empty())
+    throw UsageError(fmt::format(
+        "{}: {} is a structure-only scene (no [fluid]): give --mesh mesh.h5 (the node groups) "
+        "and --modes modes.h5",
+        stage_name, scene.file().string()));
+  const auto mesh = read_structure_mesh(io::ArtefactReader(inputs.mesh, io::mesh_schema()));
+  const modal::ModeSet modes = read_mode_set(io::ArtefactReader(inputs.modes, io::modes_schema()));
+  if (modes.shapes.rows() != mesh.structure.dim * mesh.structure.node_count())
+    input_error("{}: the modes have {} DOFs, the mesh {} has {} nodes × {}: not the same mesh",
+                inputs.modes.string(), modes.shapes.rows(), inputs.mesh.string(),
+                mesh.structure.node_count(), mesh.structure.dim);
+  std::vector<std::filesystem::path> tables;
+  const auto loads = scene_loads(scene, mesh.structure, tables);
+  const auto probes = displacement_probes(scene, mesh.structure);
+  const io::SceneView time = scene.section("time");
+  const coupling::TimeControl control{.end = time.number("end"),
+                                      .probe_interval = time.number("probe_interval")};
+  const double dt = time.number("dt_max");
+  const bool static_start = scene.section("structure").boolean("static_start");
+  spdlog::info("{}: structure only: {} modes, {} load(s), {} probe(s), Δt = {} s to t = {} s{}",
+               stage_name, modes.count(), loads.size(), probes.size(), dt, control.end,
+               static_start ? ", from the static solution" : "");
+
+  const std::filesystem::path folder = output.parent_path().empty() ? "." : output.parent_path();
+  const auto columns = coupling::displacement_columns(probes, mesh.structure.dim);
+  std::optional<io::ProbeCsvWriter> csv;
+  if (!columns.empty())
+    csv.emplace(folder / "probes.csv", columns);
+  else
+    std::filesystem::remove(folder / "probes.csv");
+  const auto run = coupling::run_structure(
+      modes, loads, probes, control, dt, static_start,
+      [&](double t, std::span<const double> row) { csv->write_row(t, row); });
+  if (csv) csv->finish();
+
+  std::vector<io::InputRecord> records{io::input_record("scene", scene.file()),
+                                       io::input_record("mesh", inputs.mesh),
+                                       io::input_record("modes", inputs.modes)};
+  for (std::size_t k = 0; k < tables.size(); ++k)
+    records.push_back(io::input_record(fmt::format("load_table_{}", k), tables[k]));
+  io::ArtefactWriter w(output, io::results_schema(), stage_name, scene.parameters_for(stage_name),
+                       records);
+  write_structure_run(w, run, columns);
+  w.commit();
+  spdlog::info("{}: completed at t = {} s: {} steps in {:.3f} s; wrote {}", stage_name,
+               run.time.back(), run.steps, run.wall_seconds, output.string());
+}
+
 }  // namespace
 
 std::string simulate_parameters(const io::Scene& scene, bool walls_from_scene) {
@@ -216,16 +371,29 @@ void validate_simulate_scene(const io::Scene& scene) {
         "section",
         scene.file().string());
   validate_flow_scene(scene);
+  if (is_flow_scene(scene)) {
+    if (!scene.array("load").empty())
+      input_error(
+          "{}: [[load]]s act on a structure-only run (no [fluid]); a flow loads the "
+          "structure itself",
+          scene.array("load").front().where("group"));
+    return;
+  }
+  std::vector<std::filesystem::path> tables;
+  for (const io::SceneView& load : scene.array("load")) load_history(load, tables);
+  for (const io::SceneView& probe : scene.array("probe"))
+    if (probe.string("kind") != "displacement")
+      input_error("{} = \"{}\": a structure-only run (no [fluid]) has displacement probes only",
+                  probe.where("kind"), probe.string("kind"));
 }
 
 void run_simulate_stage(const io::Scene& scene, const SimulateInputs& inputs,
                         const std::filesystem::path& output) {
   validate_simulate_scene(scene);
-  if (!is_flow_scene(scene))
-    throw UsageError(
-        fmt::format("{}: {} has no [fluid] section; structure-only runs are not "
-                    "available in this version of fsi-simulate",
-                    stage_name, scene.file().string()));
+  if (!is_flow_scene(scene)) {
+    run_structure_only(scene, inputs, output);
+    return;
+  }
   if (scene.dimension() == 2)
     run_flow<2>(scene, inputs, output);
   else

@@ -19,6 +19,8 @@ struct SimulateInputs {
   /// parameters (simulate_parameters) and wall files the provenance inputs.
   std::filesystem::path mesh;
   std::filesystem::path mapped;  ///< hydromodal.mapped_modes; optional, unused in this version
+  /// hydromodal.modes: the modes of a structure-only run (a scene with no [fluid]).
+  std::filesystem::path modes;
 };
 
 /// The canonical parameters results.h5 records (and --if-stale compares): the fsi-simulate keys,

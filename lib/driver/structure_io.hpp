@@ -8,6 +8,7 @@
 #include "io/artefact.hpp"
 #include "mesh/boundary.hpp"
 #include "mesh/types.hpp"
+#include "modal/modes.hpp"
 
 namespace hm::driver {
 
@@ -24,6 +25,10 @@ struct MeshArtefact {
 };
 /// Reads the structure of a hydromodal.mesh artefact (checked against its schema).
 MeshArtefact read_structure_mesh(const io::ArtefactReader& reader);
+
+/// The mode set of a hydromodal.modes artefact, as far as modal superposition needs it: dim,
+/// λ, ω, f, ζ and the shapes as full DOF vectors (n_nodes·dim × n_modes, DOF = dim·node + c).
+modal::ModeSet read_mode_set(const io::ArtefactReader& reader);
 
 /// XDMF sidecar of a mesh artefact: the structure with its quality field, and each wall.
 void write_mesh_xdmf(const std::filesystem::path& h5_path, const mesh::StructureMesh& mesh,

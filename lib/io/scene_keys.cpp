@@ -106,6 +106,10 @@ const std::vector<SectionDecl>& scene_sections() {
        "Measurements written every probe interval to probes.csv (first column `t [s]`, then "
        "`<name>.<quantity> [unit]`) and to results.h5: pressure → `.p [Pa]`, elevation → "
        "`.eta [m]`, front → `.front [m]`, force → `.fx [N]`, `.fy [N]` (, `.fz [N]`)."},
+      {"load[]", false,
+       "Prescribed loads on the structure for a structure-only run of fsi-simulate (a scene with "
+       "a [structure] and no [fluid]): a total force spread equally over the nodes of a node "
+       "group, times a history g(t)."},
       {"modes", false, "Mode extraction (fsi-modes)."},
       {"map", false, "Mapping of the mode shapes onto the surface the fluid sees (fsi-map)."},
   };
@@ -242,7 +246,9 @@ const std::vector<KeyDecl>& scene_keys() {
 
       // [time]
       number("time.end", "", "s", 0, inf, "simulated end time", simulate_stage, true),
-      number("time.dt_max", "1e-2", "s", 0, inf, "largest time step", simulate_stage, true),
+      number("time.dt_max", "1e-2", "s", 0, inf,
+             "largest time step (structure-only runs: the step, shortened to meet output times)",
+             simulate_stage, true),
       number("time.snapshot_interval", "0.0", "s", 0, inf,
              "physical time between snapshots of points and walls (0: first and last only)",
              simulate_stage),
@@ -295,9 +301,10 @@ const std::vector<KeyDecl>& scene_keys() {
       // [[probe]]
       text("probe[].name", "", {},
            "probe name, unique, letters, digits and _ (the CSV column prefix)", simulate_stage),
-      text("probe[].kind", "", {"pressure", "elevation", "front", "force"},
-           "pressure at a point, free-surface elevation at a gauge, surge front, or force on a "
-           "wall",
+      text("probe[].kind", "", {"pressure", "elevation", "front", "force", "displacement"},
+           "pressure at a point, free-surface elevation at a gauge, surge front, force on a "
+           "wall, or displacement of the structure node nearest to position (`.ux [m]`, `.uy "
+           "[m]` (, `.uz [m]`); structure-only runs)",
            simulate_stage),
       vector("probe[].position", "[]", "m", 0,
              "pressure: the point; elevation: the gauge (its vertical line); required for those "
@@ -317,6 +324,28 @@ const std::vector<KeyDecl>& scene_keys() {
              "front: [low, high] height band above the floor (the lowest wall point) where the "
              "front point is sought (default: [0, 2·dx])",
              simulate_stage),
+
+      // [[load]]
+      text("load[].name", "", {}, "load name (for messages and reports)", simulate_stage),
+      text("load[].group", "", {}, "node group of the structure mesh the force is spread over",
+           simulate_stage),
+      vector("load[].force", "", "N", 0,
+             "total force at g = 1, case.dimension values (2-D: per structure.thickness)",
+             simulate_stage),
+      text("load[].history", "\"constant\"", {"constant", "ramp", "harmonic", "table"},
+           "g(t): constant 1 (a step at t = 0), ramp min(t/ramp_time, 1), harmonic "
+           "sin(2π·frequency·t + phase), or table (CSV `t [s]`, `factor [1]`, linear between "
+           "rows)",
+           simulate_stage),
+      number("load[].ramp_time", "0.0", "s", 0, inf, "ramp: time to reach the full force",
+             simulate_stage),
+      number("load[].frequency", "0.0", "Hz", 0, inf, "harmonic: frequency", simulate_stage),
+      number("load[].phase", "0.0", "rad", -inf, inf, "harmonic: phase", simulate_stage),
+      text("load[].table", "\"\"", {}, "table: CSV file, relative to the scene", simulate_stage),
+      boolean("structure.static_start", "false",
+              "structure-only runs: start every mode at its static solution y = F(0)/ω² "
+              "instead of at rest",
+              simulate_stage),
 
       // [modes]
       integer("modes.count", "10", 1, 100000,

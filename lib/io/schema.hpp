@@ -114,6 +114,10 @@ inline constexpr const char* monitor_surface = "/monitors/surface";
 inline constexpr const char* monitor_isolated = "/monitors/isolated";
 inline constexpr const char* monitor_wall_active = "/monitors/wall_active";
 inline constexpr const char* run_phase_seconds = "/run/phase_seconds";
+inline constexpr const char* modal_time = "/modal/time";
+inline constexpr const char* modal_coordinates = "/modal/coordinates";
+inline constexpr const char* modal_velocities = "/modal/velocities";
+inline constexpr const char* modal_forces = "/modal/forces";
 }  // namespace ds
 
 /// Root attributes of hydromodal.results (besides the provenance ones).

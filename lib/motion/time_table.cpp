@@ -41,18 +41,17 @@ std::vector<std::string> split_fields(std::string_view line) {
   }
 }
 
-void check_header(const std::string& file, const std::vector<std::string>& header) {
+void check_header(const std::string& file, const std::vector<std::string>& header,
+                  const std::vector<std::string>& ok) {
   if (header.empty() || header.front() != "t [s]")
     input_error("{}:1: first header column is '{}', expected 't [s]'", file,
                 header.empty() ? "" : header.front());
   if (header.size() < 2)
-    input_error("{}:1: no motion column after 't [s]'; expected one or more of {}", file,
-                join(accepted_columns(), ", "));
+    input_error("{}:1: no column after 't [s]'; expected one or more of {}", file, join(ok, ", "));
   std::set<std::string> seen;
   bool has_angle = false;
   for (std::size_t k = 1; k < header.size(); ++k) {
     const auto& name = header[k];
-    const auto& ok = accepted_columns();
     if (std::find(ok.begin(), ok.end(), name) == ok.end()) {
       const auto guess = closest_match(name, ok);
       input_error("{}:1: unknown column '{}' (column {}){}; accepted: t [s], {}", file, name, k + 1,
@@ -60,8 +59,8 @@ void check_header(const std::string& file, const std::vector<std::string>& heade
     }
     const bool angle = name.starts_with("theta");
     if (!seen.insert(name).second || (angle && has_angle))
-      input_error("{}:1: column '{}' (column {}) given twice; each motion column at most once",
-                  file, name, k + 1);
+      input_error("{}:1: column '{}' (column {}) given twice; each column at most once", file, name,
+                  k + 1);
     has_angle = has_angle || angle;
   }
 }
@@ -126,6 +125,11 @@ Jet CubicSpline::operator()(double t) const {
 }
 
 TimeTable read_time_table(const std::filesystem::path& path) {
+  return read_time_table(path, accepted_columns());
+}
+
+TimeTable read_time_table(const std::filesystem::path& path,
+                          const std::vector<std::string>& accepted) {
   TimeTable table;
   table.file = path.string();
   const auto& file = table.file;
@@ -139,7 +143,7 @@ TimeTable read_time_table(const std::filesystem::path& path) {
   if (!std::getline(in, line))
     input_error("{}:1: file is empty; expected a header line starting with 't [s]'", file);
   const auto header = split_fields(line);
-  check_header(file, header);
+  check_header(file, header, accepted);
   table.columns.assign(header.begin() + 1, header.end());
   table.values.resize(table.columns.size());
   for (std::size_t number = 2; std::getline(in, line); ++number) {

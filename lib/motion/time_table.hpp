@@ -48,6 +48,9 @@ struct TimeTable {
 
 /// Reads and validates a table; InputError naming file, line and what was expected.
 TimeTable read_time_table(const std::filesystem::path& file);
+/// The same with other accepted columns after `t [s]` (e.g. {"factor [1]"} for a load history).
+TimeTable read_time_table(const std::filesystem::path& file,
+                          const std::vector<std::string>& accepted);
 
 /// Spline law of column `column` of `table`, scaled by `scale` (e.g. deg → rad). Evaluation
 /// outside the table's time range throws InputError naming the file and the range.

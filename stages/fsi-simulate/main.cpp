@@ -1,5 +1,6 @@
-// fsi-simulate SCENE --mesh mesh.h5 [--mapped mapped.h5] -o out/<case>/<variant>/results.h5 —
-// the LDD free-surface flow with rigid walls (fixed or in prescribed motion); probes.csv and
+// fsi-simulate SCENE --mesh mesh.h5 [--mapped mapped.h5 | --modes modes.h5] -o
+// out/<case>/<variant>/results.h5 — the LDD free-surface flow with rigid walls (fixed or in
+// prescribed motion), or a structure-only run (loads on the modes, --modes); probes.csv and
 // snapshots/ are written next to results.h5. Flexible bodies (--mapped) come with the modal
 // coupling. The scene-stage shape of stage_main (echo, --validate, --if-stale), with optional
 // inputs: without --mesh the walls are meshed from the scene (fsi-mesh needs a [structure]).
@@ -35,8 +36,11 @@ void simulate(const hm::stages::StageArgs& args) {
     }
     spdlog::info("{}: (re)making {}: {}", name, args.output, reason);
   }
-  hm::driver::run_simulate_stage(
-      scene, {.mesh = args.inputs.at("mesh"), .mapped = args.inputs.at("mapped")}, args.output);
+  hm::driver::run_simulate_stage(scene,
+                                 {.mesh = args.inputs.at("mesh"),
+                                  .mapped = args.inputs.at("mapped"),
+                                  .modes = args.inputs.at("modes")},
+                                 args.output);
 }
 
 }  // namespace
@@ -45,14 +49,18 @@ int main(int argc, char** argv) {
   const hm::stages::StageInfo info{
       .name = name,
       .summary =
-          "Run the LDD free-surface flow with rigid walls (fixed or in prescribed motion): "
-          "results.h5 (hydromodal.results), probes.csv and snapshots/ next to it.",
+          "Run the LDD free-surface flow with rigid walls (fixed or in prescribed motion), or "
+          "the structure alone under prescribed loads (CFPI on its modes): results.h5 "
+          "(hydromodal.results), probes.csv (and snapshots/ of a flow) next to it.",
       .inputs = {{"mesh",
                   "mesh artefact written by fsi-mesh (the walls); without it the [[wall]]s are "
                   "meshed from the scene as fsi-mesh would (rigid-only scenes)"},
                  {"mapped",
                   "mapped-modes artefact written by fsi-map (optional; flexible "
-                  "bodies come in a later version)"}},
+                  "bodies come in a later version)"},
+                 {"modes",
+                  "modes artefact written by fsi-modes: the structure of a structure-only run "
+                  "(a scene with [[load]]s and no [fluid]; needs --mesh for the node groups)"}},
       .flags = {{"if-stale",
                  "run only if the output is missing or stale: written by another tool version, "
                  "with other scene parameters, or from inputs whose content changed (content "
