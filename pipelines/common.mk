@@ -19,7 +19,8 @@
 # What runs follows the scene: a [structure] section brings mesh → modes → map; a [fluid]
 # section brings simulate (on mesh.h5 when there is a structure, else fsi-simulate meshes the
 # [[wall]]s itself, as fsi-mesh needs a structure); [[load]]s without a [fluid] bring a
-# structure-only simulate on mesh.h5 and modes.h5.
+# structure-only simulate on mesh.h5 and modes.h5; a [fluid] with a [structure] a coupled
+# simulate on mesh.h5 and mapped.h5.
 ROOT     := $(abspath $(dir $(lastword $(MAKEFILE_LIST)))/..)
 CASE     ?= $(notdir $(abspath $(CURDIR)))
 VARIANT  ?= full
@@ -59,9 +60,11 @@ $(OUT)/mapped.h5: $(OUT)/modes.h5 FORCE
 
 # The flow; probes.csv and snapshots/ (ParaView: snapshots/flow.xdmf) land next to results.h5.
 # A structure-only run takes the mode set as well (--modes).
-$(OUT)/results.h5: $(if $(HAS_STRUCTURE),$(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),$(OUT)/modes.h5) FORCE
+# A coupled run (a [fluid] and a [structure]) takes the mapped modes (--mapped).
+COUPLED := $(and $(HAS_FLUID),$(HAS_STRUCTURE))
+$(OUT)/results.h5: $(if $(HAS_STRUCTURE),$(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),$(OUT)/modes.h5) $(if $(COUPLED),$(OUT)/mapped.h5) FORCE
 	@mkdir -p $(OUT)
-	$(FSI_SIMULATE) $(SCENE) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),--modes $(OUT)/modes.h5) -o $@ --if-stale
+	$(FSI_SIMULATE) $(SCENE) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),--modes $(OUT)/modes.h5) $(if $(COUPLED),--mapped $(OUT)/mapped.h5) -o $@ --if-stale
 
 FORCE:
 

@@ -28,10 +28,10 @@ constexpr double even_steps_before_output = 4.0;
 /// The step from t towards `target` (the next output time) and what limits it.
 template <int D>
 std::pair<double, ldd::StepLimit> step_size(const ldd::FlowSolver<D>& solver,
-                                            std::span<const WallMotion> motions, double t,
-                                            double target) {
+                                            std::span<const WallMotion> motions, double body_speed,
+                                            double t, double target) {
   const double gap = target - t;
-  double wall_speed = max_wall_speed(motions, t);
+  double wall_speed = std::max(max_wall_speed(motions, t), body_speed);
   auto [dt, limit] = solver.stable_dt(wall_speed);
   const bool moving = std::any_of(motions.begin(), motions.end(),
                                   [](const WallMotion& w) { return w.motion.has_value(); });
@@ -107,9 +107,18 @@ const char* to_string(RunStatus status) {
 
 // ---- the loop ---------------------------------------------------------------------------------
 
+void ModalHistory::record(double t, const Eigen::VectorXd& y_, const Eigen::VectorXd& v_,
+                          const Eigen::VectorXd& F_) {
+  time.push_back(t);
+  y.push_back(y_);
+  v.push_back(v_);
+  F.push_back(F_);
+}
+
 template <int D>
 RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
-              const TimeControl& time, const RunSinks<D>& sinks) {
+              const TimeControl& time, const RunSinks<D>& sinks,
+              std::span<FlexibleBody<D>> bodies) {
   const double t0 = solver.time();
   if (!(time.end > t0))
     input_error("time.end = {} s must be after the start time {} s", time.end, t0);
@@ -139,6 +148,13 @@ RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
     ++r.snapshots;
   };
 
+  r.modal.resize(bodies.size());
+  const auto record_modal = [&] {
+    for (std::size_t b = 0; b < bodies.size(); ++b)
+      r.modal[b].record(solver.time(), bodies[b].y(), bodies[b].v(), bodies[b].F());
+  };
+  for (auto& body : bodies) body.start(solver);
+  record_modal();
   record_probes();
   snapshot(SnapshotKind::regular);
   try {
@@ -146,9 +162,18 @@ RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
       const double t = solver.time();
       const double target =
           probe_every_step ? snapshots.next() : std::min(snapshots.next(), probes.next());
-      const auto [dt, limit] = step_size<D>(solver, motions, t, target);
+      double body_speed = 0.0;
+      for (const auto& body : bodies) body_speed = std::max(body_speed, body.max_speed());
+      const auto [dt, limit] = step_size<D>(solver, motions, body_speed, t, target);
       place_walls<D>(solver.walls(), motions, t + dt);
-      ldd::StepMonitor m = solver.step(dt);
+      ldd::StepMonitor m;
+      if (bodies.empty()) {
+        m = solver.step(dt);
+      } else {
+        r.coupling.emplace_back();
+        m = coupled_step<D>(solver, bodies, dt, r.coupling.back());
+        record_modal();
+      }
       m.limit = limit;
       r.phase_totals += m.seconds;
       r.monitors.push_back(m);
@@ -177,8 +202,8 @@ RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
 template void place_walls<2>(std::span<ldd::WallMesh<2>>, std::span<const WallMotion>, double);
 template void place_walls<3>(std::span<ldd::WallMesh<3>>, std::span<const WallMotion>, double);
 template RunResult run<2>(ldd::FlowSolver<2>&, std::span<const WallMotion>, const TimeControl&,
-                          const RunSinks<2>&);
+                          const RunSinks<2>&, std::span<FlexibleBody<2>>);
 template RunResult run<3>(ldd::FlowSolver<3>&, std::span<const WallMotion>, const TimeControl&,
-                          const RunSinks<3>&);
+                          const RunSinks<3>&, std::span<FlexibleBody<3>>);
 
 }  // namespace hm::coupling

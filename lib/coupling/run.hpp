@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "coupling/flexible_body.hpp"
 #include "ldd/flow.hpp"
 #include "motion/rigid_motion.hpp"
 
@@ -85,9 +86,20 @@ struct ProbeSeries {
   std::vector<std::vector<double>> rows;  ///< one row of values per time
 };
 
+/// A flexible body's modal state over a run: the start and every step end.
+struct ModalHistory {
+  std::vector<double> time;              ///< [s]
+  std::vector<Eigen::VectorXd> y, v, F;  ///< per time: coordinates, velocities, forces
+  void record(double t, const Eigen::VectorXd& y_, const Eigen::VectorXd& v_,
+              const Eigen::VectorXd& F_);
+};
+
 struct RunResult {
   RunStatus status = RunStatus::completed;
-  std::string divergence_report;  ///< ldd::DivergenceReport::text() of a diverged run
+  /// Per step, one monitor per flexible body (empty without bodies).
+  std::vector<std::vector<CouplingMonitor>> coupling;
+  std::vector<ModalHistory> modal;  ///< per flexible body
+  std::string divergence_report;    ///< ldd::DivergenceReport::text() of a diverged run
   std::vector<ldd::StepMonitor> monitors;
   ProbeSeries probes;
   ldd::PhaseSeconds phase_totals;  ///< summed over the steps [s]
@@ -97,10 +109,13 @@ struct RunResult {
 };
 
 /// Runs `solver` from its current time to time.end with the walls in `motions` (parallel to
-/// solver.walls()). InputError when time.end is not after the solver's time or an interval is
-/// negative; FlowDiverged is caught and reported in the result (other errors propagate).
+/// solver.walls()) and the flexible `bodies` (their walls' motions are ignored: the modes move
+/// them), started here (FlexibleBody::start) and stepped by coupled_step. InputError when
+/// time.end is not after the solver's time or an interval is negative; FlowDiverged is caught
+/// and reported in the result (other errors propagate).
 template <int D>
 RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
-              const TimeControl& time, const RunSinks<D>& sinks);
+              const TimeControl& time, const RunSinks<D>& sinks,
+              std::span<FlexibleBody<D>> bodies = {});
 
 }  // namespace hm::coupling

@@ -131,13 +131,18 @@ std::vector<std::string> scene_wall_names(const io::Scene& scene) {
   return names;
 }
 
-void validate_probe(const SceneView& probe, const std::vector<std::string>& walls) {
+void validate_probe(const SceneView& probe, const std::vector<std::string>& walls,
+                    bool has_structure) {
   const std::string kind = probe.string("kind");
-  if (kind == "displacement")
-    input_error(
-        "{}: displacement probes measure a structure; in this version they need a "
-        "structure-only run (a [structure] and [[load]]s, no [fluid])",
-        probe.where("kind"));
+  if (kind == "displacement") {
+    if (!has_structure)
+      input_error(
+          "{}: a displacement probe measures the structure, but the scene has no [structure]",
+          probe.where("kind"));
+    if (probe.vector("position").size() == 0)
+      input_error("{}: a displacement probe needs position (m): the structure point to follow",
+                  probe.where("kind"));
+  }
   if ((kind == "pressure" || kind == "elevation") && probe.vector("position").size() == 0)
     input_error("{}: a {} probe needs position (m)", probe.where("kind"), kind);
   if (kind == "force") {
@@ -173,7 +178,9 @@ void validate_probe(const SceneView& probe, const std::vector<std::string>& wall
 }
 
 void validate_probes(const io::Scene& scene) {
-  const std::vector<std::string> walls = scene_wall_names(scene);
+  std::vector<std::string> walls = scene_wall_names(scene);
+  const bool has_structure = scene.has("structure");
+  if (has_structure) walls.push_back(structure_wall_name);
   std::set<std::string> seen;
   for (const SceneView& probe : scene.array("probe")) {
     const std::string name = probe.string("name");
@@ -185,7 +192,7 @@ void validate_probes(const io::Scene& scene) {
     if (!seen.insert(name).second)
       input_error("{} = \"{}\": another probe has this name; probe names must be unique",
                   probe.where("name"), name);
-    validate_probe(probe, walls);
+    validate_probe(probe, walls, has_structure);
   }
 }
 
@@ -263,6 +270,24 @@ void seed_regions(const io::Scene& scene, FlowSetup<D>& setup) {
   }
 }
 
+/// A probe behind a (non-thin) wall measures inside a solid or outside the tank: an error.
+template <int D>
+void require_fluid_side(const SceneView& view, const FlowSetup<D>& setup,
+                        const ldd::Vec<D>& position) {
+  for (std::size_t w = 0; w < setup.walls.size(); ++w) {
+    const auto& wall = setup.walls[w];
+    if (wall.thin()) continue;
+    const double tolerance = 1e-6 * (wall.upper() - wall.lower()).norm();
+    const auto c = wall.closest(position);
+    if (c.signed_distance < -tolerance)
+      input_error(
+          "{} = [{}] is {:.3g} m behind wall '{}' (on the side its normals point away from: "
+          "inside a solid or outside the fluid's container); put the probe on the fluid side",
+          view.where("position"), fmt::join(position, ", "), -c.signed_distance,
+          setup.wall_names[w]);
+  }
+}
+
 template <int D>
 std::vector<coupling::Probe<D>> make_probes(const io::Scene& scene, const FlowSetup<D>& setup) {
   ldd::Vec<D> lower = setup.walls.front().lower(), upper = setup.walls.front().upper();
@@ -276,6 +301,7 @@ std::vector<coupling::Probe<D>> make_probes(const io::Scene& scene, const FlowSe
     coupling::Probe<D> p;
     p.name = view.string("name");
     const std::string kind = view.string("kind");
+    if (kind == "displacement") continue;  // the structure's (simulate_stage)
     p.kind = kind == "pressure"    ? coupling::ProbeKind::pressure
              : kind == "elevation" ? coupling::ProbeKind::elevation
              : kind == "front"     ? coupling::ProbeKind::front
@@ -289,6 +315,7 @@ std::vector<coupling::Probe<D>> make_probes(const io::Scene& scene, const FlowSe
         input_error("{} = [{}] is outside the walls' bounding box [{}] – [{}] m",
                     view.where("position"), fmt::join(position, ", "), fmt::join(lower, ", "),
                     fmt::join(upper, ", "));
+      require_fluid_side<D>(view, setup, p.position);
     }
     p.radius = view.number("radius") > 0.0 ? view.number("radius") : h;
     if (p.kind == coupling::ProbeKind::force) {
@@ -338,13 +365,21 @@ void validate_flow_scene(const io::Scene& scene) {
         file);
   if (scene.array("wall").empty())
     input_error("{}: a flow scene needs at least one [[wall]] to hold the fluid", file);
-  for (const SceneView& wall : scene.array("wall")) wall_motion(wall, scene.dimension());
+  for (const SceneView& wall : scene.array("wall")) {
+    wall_motion(wall, scene.dimension());
+    if (scene.has("structure") && wall.string("name") == structure_wall_name)
+      input_error(
+          "{} = \"{}\": in a scene with a [structure] this name is the structure's own wall "
+          "(its mapped surface); give the rigid wall another name",
+          wall.where("name"), structure_wall_name);
+  }
   validate_probes(scene);
 }
 
 template <int D>
 FlowSetup<D> flow_setup(const io::Scene& scene,
-                        const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces) {
+                        const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces,
+                        const mesh::SurfaceMesh* structure) {
   HM_ASSERT(scene.dimension() == D, "a {}-D flow set up from a {}-D scene", D, scene.dimension());
   if (!is_flow_scene(scene))
     input_error("{}: the scene has no [fluid] section, so there is no flow to run",
@@ -366,6 +401,15 @@ FlowSetup<D> flow_setup(const io::Scene& scene,
     if (!table.empty()) setup.motion_tables.push_back(table);
     setup.walls.emplace_back(surface, name, wall.boolean("thin"));
     setup.wall_names.push_back(name);
+  }
+  if (structure) {
+    if (structure->dim != D)
+      input_error("{}: the structure's surface is {}-D, the case is {}-D", scene.file().string(),
+                  structure->dim, D);
+    setup.structure_wall = static_cast<int>(setup.walls.size());
+    setup.motions.push_back({structure->vertices, std::nullopt});
+    setup.walls.emplace_back(*structure, structure_wall_name, false);
+    setup.wall_names.push_back(structure_wall_name);
   }
   coupling::place_walls<D>(setup.walls, setup.motions, 0.0);
   seed_regions<D>(scene, setup);
@@ -415,20 +459,25 @@ std::vector<std::pair<std::string, mesh::SurfaceMesh>> scene_wall_surfaces(
 }
 
 template <int D>
-FlowSetup<D> flow_setup(const io::Scene& scene, const io::ArtefactReader& mesh_artefact) {
+FlowSetup<D> flow_setup(const io::Scene& scene, const io::ArtefactReader& mesh_artefact,
+                        const mesh::SurfaceMesh* structure) {
   std::vector<std::pair<std::string, mesh::SurfaceMesh>> surfaces;
   for (const std::string& name : scene_wall_names(scene))
     surfaces.emplace_back(name, read_wall(mesh_artefact, name));
-  return flow_setup<D>(scene, surfaces);
+  return flow_setup<D>(scene, surfaces, structure);
 }
 
 template ldd::Vec<2> default_gravity<2>();
 template ldd::Vec<3> default_gravity<3>();
 template FlowSetup<2> flow_setup<2>(const io::Scene&,
-                                    const std::vector<std::pair<std::string, mesh::SurfaceMesh>>&);
+                                    const std::vector<std::pair<std::string, mesh::SurfaceMesh>>&,
+                                    const mesh::SurfaceMesh*);
 template FlowSetup<3> flow_setup<3>(const io::Scene&,
-                                    const std::vector<std::pair<std::string, mesh::SurfaceMesh>>&);
-template FlowSetup<2> flow_setup<2>(const io::Scene&, const io::ArtefactReader&);
-template FlowSetup<3> flow_setup<3>(const io::Scene&, const io::ArtefactReader&);
+                                    const std::vector<std::pair<std::string, mesh::SurfaceMesh>>&,
+                                    const mesh::SurfaceMesh*);
+template FlowSetup<2> flow_setup<2>(const io::Scene&, const io::ArtefactReader&,
+                                    const mesh::SurfaceMesh*);
+template FlowSetup<3> flow_setup<3>(const io::Scene&, const io::ArtefactReader&,
+                                    const mesh::SurfaceMesh*);
 
 }  // namespace hm::driver

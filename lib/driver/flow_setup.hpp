@@ -16,6 +16,9 @@
 
 namespace hm::driver {
 
+/// The wall name of the structure's mapped surface in a coupled scene.
+inline constexpr const char* structure_wall_name = "structure";
+
 template <int D>
 struct FlowSetup {
   ldd::FlowOptions<D> options;
@@ -26,6 +29,7 @@ struct FlowSetup {
   coupling::TimeControl time;
   std::vector<coupling::Probe<D>> probes;
   std::vector<std::filesystem::path> motion_tables;  ///< CSV files read (provenance inputs)
+  int structure_wall = -1;  ///< index of the structure's wall (coupled scenes), else −1
 };
 
 /// Whether the scene describes a flow (it has a [fluid] section).
@@ -40,13 +44,18 @@ void validate_flow_scene(const io::Scene& scene);
 /// Builds the flow from the scene and the wall surfaces (name → surface, at least the scene's
 /// [[wall]] names). Runs validate_flow_scene first. InputError (naming the scene key) for a
 /// fluid region outside the walls, a probe position outside the walls' bounding box.
+/// `structure`: the structure's surface in a coupled scene (mapped.h5's target surface), added
+/// after the [[wall]]s as the wall structure_wall_name, fixed here (its modes move it), before
+/// the fluid is seeded. A pressure or elevation probe behind a wall is an InputError.
 template <int D>
 FlowSetup<D> flow_setup(const io::Scene& scene,
-                        const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces);
+                        const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces,
+                        const mesh::SurfaceMesh* structure = nullptr);
 
 /// As above with the walls of a hydromodal.mesh artefact (/walls/<name>).
 template <int D>
-FlowSetup<D> flow_setup(const io::Scene& scene, const io::ArtefactReader& mesh_artefact);
+FlowSetup<D> flow_setup(const io::Scene& scene, const io::ArtefactReader& mesh_artefact,
+                        const mesh::SurfaceMesh* structure = nullptr);
 
 /// The [[wall]]s of the scene meshed here, as fsi-mesh would write them to mesh.h5 (same
 /// lib/mesh functions and keys): for rigid-only scenes, which fsi-mesh does not take (it needs a

@@ -1,5 +1,8 @@
 #include "driver/simulate_stage.hpp"
 
+#include <array>
+#include <limits>
+#include <numbers>
 #include <optional>
 
 #include <fmt/format.h>
@@ -100,23 +103,160 @@ template <int D>
 std::string describe_walls(const FlowSetup<D>& setup, const io::Scene& scene) {
   std::vector<std::string> lines;
   const auto views = scene.array("wall");
-  for (std::size_t w = 0; w < setup.walls.size(); ++w)
+  for (std::size_t w = 0; w < setup.walls.size(); ++w) {
+    const std::string motion = static_cast<int>(w) == setup.structure_wall
+                                   ? std::string("modal")
+                                   : views[w].string("motion");
     lines.push_back(fmt::format("{} ({} vertices, {} elements, motion {}{})", setup.wall_names[w],
                                 setup.walls[w].vertices().size(), setup.walls[w].element_count(),
-                                views[w].string("motion"), setup.walls[w].thin() ? ", thin" : ""));
+                                motion, setup.walls[w].thin() ? ", thin" : ""));
+  }
   return join(lines, "; ");
+}
+
+// ---- coupled runs ---------------------------------------------------------------------------
+
+/// The flexible body of a coupled scene: mapped.h5's target surface and its modes.
+template <int D>
+struct MappedBody {
+  mesh::SurfaceMesh surface;
+  coupling::ModalSurface<D> modes;
+};
+
+template <int D>
+MappedBody<D> read_mapped_body(const std::filesystem::path& file) {
+  const io::ArtefactReader r(file, io::mapped_modes_schema());
+  MappedBody<D> body;
+  body.surface.vertices = r.read_matrix(ds::target_vertices);
+  body.surface.dim = static_cast<int>(body.surface.vertices.cols());
+  body.surface.cells = r.read_indices(ds::target_cells);
+  if (body.surface.dim != D)
+    input_error("{}: the mapped surface is {}-D, the case is {}-D", file.string(), body.surface.dim,
+                D);
+  const auto n_modes = static_cast<Eigen::Index>(r.extent("n_modes"));
+  const auto n_vertices = body.surface.vertices.rows();
+  const std::vector<double> stacked = r.read_values(ds::mapped_shapes);  // [mode][vertex][c]
+  body.modes.shapes.resize(D * n_vertices, n_modes);
+  for (Eigen::Index m = 0; m < n_modes; ++m)
+    for (Eigen::Index k = 0; k < D * n_vertices; ++k)
+      body.modes.shapes(k, m) = stacked[static_cast<std::size_t>(m * D * n_vertices + k)];
+  for (Eigen::Index v = 0; v < n_vertices; ++v)
+    body.modes.x0.push_back(body.surface.vertices.row(v).transpose());
+  const auto vector_of = [&](const char* dataset) {
+    const std::vector<double> values = r.read_values(dataset);
+    return Eigen::VectorXd(
+        Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())));
+  };
+  body.modes.omega = vector_of(ds::omega);
+  body.modes.zeta = vector_of(ds::damping_ratio);
+  return body;
+}
+
+coupling::CouplingOptions coupling_options(const io::Scene& scene) {
+  const io::SceneView c = scene.section("coupling");
+  coupling::CouplingOptions o;
+  o.scheme = c.string("scheme") == "explicit" ? coupling::CouplingScheme::explicit_staggered
+                                              : coupling::CouplingScheme::strong;
+  o.tolerance = c.number("tolerance");
+  o.max_iterations = static_cast<int>(c.number("max_iterations"));
+  o.added_mass_interval = static_cast<long>(c.number("added_mass_interval"));
+  o.load_scale = scene.dimension() == 2 ? scene.number("structure.thickness") : 1.0;
+  return o;
+}
+
+/// A displacement probe of a coupled run: the vertex of the structure's wall nearest to it.
+struct SurfaceProbe {
+  std::string name;
+  Eigen::Index vertex = 0;
+};
+
+template <int D>
+std::vector<SurfaceProbe> surface_probes(const io::Scene& scene,
+                                         const coupling::ModalSurface<D>& modes) {
+  std::vector<SurfaceProbe> probes;
+  for (const io::SceneView& view : scene.array("probe")) {
+    if (view.string("kind") != "displacement") continue;
+    const Eigen::VectorXd x = view.vector("position");
+    if (x.size() != D)
+      input_error("{}: a displacement probe needs position, {} values (m)", view.where("kind"), D);
+    Eigen::Index best = 0;
+    double distance = std::numeric_limits<double>::infinity();
+    for (std::size_t v = 0; v < modes.x0.size(); ++v) {
+      const double d = (modes.x0[v] - x).norm();
+      if (d < distance) {
+        distance = d;
+        best = static_cast<Eigen::Index>(v);
+      }
+    }
+    spdlog::info("{}: probe {}: structure surface vertex {} at [{}] m, {:.3g} m from the position",
+                 stage_name, view.string("name"), best, fmt::join(modes.x0[best], ", "), distance);
+    probes.push_back({view.string("name"), best});
+  }
+  return probes;
+}
+
+template <typename T, typename F>
+std::vector<T> coupling_column(const std::vector<std::vector<coupling::CouplingMonitor>>& steps,
+                               F field) {
+  std::vector<T> out;
+  out.reserve(steps.size());
+  for (const auto& s : steps) out.push_back(s.empty() ? T{} : static_cast<T>(field(s.front())));
+  return out;
+}
+
+template <int D>
+void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
+                    const coupling::FlexibleBody<D>& body) {
+  using C = coupling::CouplingMonitor;
+  const coupling::ModalHistory& h = r.modal.front();
+  const auto rows = static_cast<Eigen::Index>(h.time.size());
+  const Eigen::Index m = body.modes().modes();
+  Eigen::MatrixXd y(rows, m), v(rows, m), F(rows, m);
+  for (Eigen::Index k = 0; k < rows; ++k) {
+    y.row(k) = h.y[static_cast<std::size_t>(k)].transpose();
+    v.row(k) = h.v[static_cast<std::size_t>(k)].transpose();
+    F.row(k) = h.F[static_cast<std::size_t>(k)].transpose();
+  }
+  w.write(ds::modal_time, h.time);
+  w.write(ds::modal_coordinates, io::MatrixRM(y));
+  w.write(ds::modal_velocities, io::MatrixRM(v));
+  w.write(ds::modal_forces, io::MatrixRM(F));
+  if (body.added_mass().size() > 0) w.write(ds::modal_added_mass, io::MatrixRM(body.added_mass()));
+  w.write(ds::monitor_coupling_iterations,
+          coupling_column<std::int64_t>(r.coupling, [](const C& c) { return c.iterations; }));
+  w.write(ds::monitor_interface_residual,
+          coupling_column<double>(r.coupling, [](const C& c) { return c.residual; }));
+  const auto stretch = coupling_column<double>(r.coupling, [](const C& c) { return c.stretch; });
+  w.write(ds::monitor_structure_stretch, stretch);
+  const double largest = stretch.empty() ? 0.0 : *std::max_element(stretch.begin(), stretch.end());
+  w.set_attribute(ra::coupling_scheme, std::string(coupling::to_string(body.options().scheme)));
+  w.set_attribute(ra::max_structure_stretch, largest);
+  if (largest > 0.05)
+    spdlog::warn(
+        "{}: the structure's displacement reached {:.1f} % of its size: linear modes stretch "
+        "the body visibly beyond 5 % (rotations are not rigid); read the response with care",
+        stage_name, 100 * largest);
 }
 
 template <int D>
 void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
               const std::filesystem::path& output) {
   std::vector<std::filesystem::path> wall_files;
+  const bool coupled = scene.has("structure");
+  if (coupled && inputs.mapped.empty())
+    throw UsageError(fmt::format(
+        "{}: {} couples the flow with a [structure]: give --mapped mapped.h5 (fsi-map's modes "
+        "on the structure's surface)",
+        stage_name, scene.file().string()));
+  std::optional<MappedBody<D>> mapped;
+  if (coupled) mapped = read_mapped_body<D>(inputs.mapped);
+  const mesh::SurfaceMesh* structure = mapped ? &mapped->surface : nullptr;
   FlowSetup<D> setup;
   if (inputs.mesh.empty()) {
     spdlog::info("{}: no --mesh: meshing the walls from the scene's [[wall]] keys", stage_name);
-    setup = flow_setup<D>(scene, scene_wall_surfaces(scene, &wall_files));
+    setup = flow_setup<D>(scene, scene_wall_surfaces(scene, &wall_files), structure);
   } else {
-    setup = flow_setup<D>(scene, io::ArtefactReader(inputs.mesh, io::mesh_schema()));
+    setup = flow_setup<D>(scene, io::ArtefactReader(inputs.mesh, io::mesh_schema()), structure);
   }
   const auto& o = setup.options;
   spdlog::info(
@@ -134,8 +274,25 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   spdlog::info("{}: {} wall nodes; initial pressure solved", stage_name,
                solver.points().size() - fluid_points);
 
+  std::vector<coupling::FlexibleBody<D>> bodies;
+  std::vector<SurfaceProbe> displacement;
+  if (mapped) {
+    displacement = surface_probes<D>(scene, mapped->modes);
+    bodies.emplace_back(structure_wall_name, std::move(mapped->modes), setup.structure_wall,
+                        coupling_options(scene),
+                        solver.walls()[static_cast<std::size_t>(setup.structure_wall)]);
+    spdlog::info("{}: flexible body '{}': {} modes ({} Hz), {} coupling", stage_name,
+                 structure_wall_name, bodies.front().modes().modes(),
+                 fmt::join(bodies.front().modes().omega / (2 * std::numbers::pi), ", "),
+                 coupling::to_string(bodies.front().options().scheme));
+  }
+
   const std::filesystem::path folder = output.parent_path().empty() ? "." : output.parent_path();
-  const std::vector<std::string> columns = coupling::probe_columns<D>(setup.probes);
+  std::vector<std::string> columns = coupling::probe_columns<D>(setup.probes);
+  for (const SurfaceProbe& p : displacement) {
+    static constexpr std::array<const char*, 3> axes{".ux [m]", ".uy [m]", ".uz [m]"};
+    for (int a = 0; a < D; ++a) columns.push_back(p.name + axes[static_cast<std::size_t>(a)]);
+  }
   std::optional<io::ProbeCsvWriter> csv;
   if (!columns.empty())
     csv.emplace(folder / "probes.csv", columns);
@@ -148,7 +305,12 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   coupling::RunSinks<D> sinks;
   if (!columns.empty()) {
     sinks.evaluate_probes = [&](const ldd::FlowSolver<D>& s) {
-      return coupling::evaluate_probes<D>(s, setup.probes);
+      std::vector<double> row = coupling::evaluate_probes<D>(s, setup.probes);
+      for (const SurfaceProbe& p : displacement) {
+        const ldd::Vec<D> u = bodies.front().displacement(p.vertex);
+        row.insert(row.end(), u.data(), u.data() + D);
+      }
+      return row;
     };
     sinks.probe_row = [&](double t, std::span<const double> v) { csv->write_row(t, v); };
   }
@@ -160,7 +322,8 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   };
   sinks.progress = [&](const ldd::StepMonitor& m) { progress.update(m.time); };
 
-  const coupling::RunResult r = coupling::run<D>(solver, setup.motions, setup.time, sinks);
+  const coupling::RunResult r =
+      coupling::run<D>(solver, setup.motions, setup.time, sinks, std::span(bodies));
   if (csv) csv->finish();
   const bool completed = r.status == coupling::RunStatus::completed;
   if (completed) progress.finish();
@@ -170,6 +333,7 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   write_monitors(w, r.monitors);
   write_phase_totals(w, r.phase_totals);
   write_probes(w, r.probes, columns);
+  if (!bodies.empty()) write_coupling<D>(w, r, bodies.front());
   if (!completed) w.set_attribute(io::attr::status, "diverged: " + first_line(r.divergence_report));
   w.set_attribute(ra::run_status, std::string(coupling::to_string(r.status)));
   w.set_attribute(ra::divergence_report, r.divergence_report);

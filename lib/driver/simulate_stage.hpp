@@ -1,7 +1,8 @@
 #pragma once
 // fsi-simulate: scene + mesh.h5 (+ mapped.h5, issue 7) → results.h5 (hydromodal.results), with
 // probes.csv and snapshots/ (flow_*.h5 + flow.xdmf for ParaView) next to it.
-// This version runs the flow with rigid walls, fixed or in prescribed motion.
+// Rigid walls are fixed or in prescribed motion; a [structure] in a flow scene is a flexible body
+// (coupling/flexible_body.hpp) on the mapped modes.
 #include <filesystem>
 
 #include "io/scene.hpp"
@@ -18,7 +19,8 @@ struct SimulateInputs {
   /// scenes, which fsi-mesh refuses without a [structure]); their mesh keys then join the
   /// parameters (simulate_parameters) and wall files the provenance inputs.
   std::filesystem::path mesh;
-  std::filesystem::path mapped;  ///< hydromodal.mapped_modes; optional, unused in this version
+  /// hydromodal.mapped_modes: the flexible body of a coupled scene ([fluid] and [structure]).
+  std::filesystem::path mapped;
   /// hydromodal.modes: the modes of a structure-only run (a scene with no [fluid]).
   std::filesystem::path modes;
 };

@@ -110,6 +110,10 @@ const std::vector<SectionDecl>& scene_sections() {
        "Prescribed loads on the structure for a structure-only run of fsi-simulate (a scene with "
        "a [structure] and no [fluid]): a total force spread equally over the nodes of a node "
        "group, times a history g(t)."},
+      {"coupling", false,
+       "Two-way coupling of the flow with the structure (a scene with [fluid] and [structure]): "
+       "the structure's mapped surface (mapped.h5, fsi-map) becomes the wall named "
+       "\"structure\", moved by the modes and loaded by the fluid's pressure."},
       {"modes", false, "Mode extraction (fsi-modes)."},
       {"map", false, "Mapping of the mode shapes onto the surface the fluid sees (fsi-map)."},
   };
@@ -342,6 +346,25 @@ const std::vector<KeyDecl>& scene_keys() {
       number("load[].frequency", "0.0", "Hz", 0, inf, "harmonic: frequency", simulate_stage),
       number("load[].phase", "0.0", "rad", -inf, inf, "harmonic: phase", simulate_stage),
       text("load[].table", "\"\"", {}, "table: CSV file, relative to the scene", simulate_stage),
+      // [coupling]
+      text("coupling.scheme", "\"strong\"", {"strong", "explicit"},
+           "fluid–structure coupling of a scene with [fluid] and [structure]: strong "
+           "(sub-iterations of the PPE per step with the measured added mass as the Jacobian; "
+           "stable for light structures) or explicit (the paper's staggered scheme, one PPE per "
+           "step; unstable when the fluid's added mass exceeds the structure's)",
+           simulate_stage),
+      number("coupling.tolerance", "1e-3", "1", 0, 1,
+             "strong: interface residual (relative modal-acceleration mismatch) that ends the "
+             "sub-iterations",
+             simulate_stage, true),
+      integer("coupling.max_iterations", "20", 1, 1000,
+              "strong: PPE solves per step at most (a step that ends above the tolerance is "
+              "recorded in /monitors/interface_residual)",
+              simulate_stage),
+      integer("coupling.added_mass_interval", "20", 1, 1000000,
+              "strong: steps between measurements of the modal added-mass matrix (one PPE per "
+              "mode)",
+              simulate_stage),
       boolean("structure.static_start", "false",
               "structure-only runs: start every mode at its static solution y = F(0)/ω² "
               "instead of at rest",

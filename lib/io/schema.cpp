@@ -238,9 +238,10 @@ const SchemaSpec& results_schema() {
       "probe_columns (the names of the columns of /probes/values as in the CSV header, "
       "comma-separated), dt_limit_names (the names of the /monitors/dt_limit codes in code order: "
       "cfl, viscous, acceleration, maximum, output) and phase_names (the entries of "
-      "/run/phase_seconds). A diverged run has status \"diverged: ...\" (so --if-stale reruns "
+      "/run/phase_seconds); a coupled run also coupling_scheme and max_structure_stretch. A "
+      "diverged run has status \"diverged: ...\" (so --if-stale reruns "
       "it). A flow run has the /monitors and /run datasets; a structure-only run (no fluid) the "
-      "/modal ones instead.",
+      "/modal ones instead; a coupled run (fluid and structure) both.",
       {
           optional({ds::probe_time, DType::f64, {"n_probe_rows"}, "s", "times of the probe rows"}),
           optional({ds::probe_values,
@@ -306,7 +307,7 @@ const SchemaSpec& results_schema() {
                     DType::f64,
                     {"n_modal_rows"},
                     "s",
-                    "structure-only runs: the start and the end of every step"}),
+                    "structure-only and coupled runs: the start and the end of every step"}),
           optional({ds::modal_coordinates,
                     DType::f64,
                     {"n_modal_rows", "n_modes"},
@@ -322,6 +323,29 @@ const SchemaSpec& results_schema() {
                     {"n_modal_rows", "n_modes"},
                     "N/sqrt(kg)",
                     "modal forces F = Phi^T f"}),
+          optional({ds::modal_added_mass,
+                    DType::f64,
+                    {"n_modes", "n_modes"},
+                    "1",
+                    "coupled runs (strong scheme): the last measured modal added-mass matrix of "
+                    "the fluid (in units of the modal mass)"}),
+          optional({ds::monitor_coupling_iterations,
+                    DType::i64,
+                    {"n_steps"},
+                    "",
+                    "coupled runs: PPE solves of the step (the coupling sub-iterations)"}),
+          optional({ds::monitor_interface_residual,
+                    DType::f64,
+                    {"n_steps"},
+                    "1",
+                    "coupled runs: relative mismatch between the modal acceleration the fluid "
+                    "saw and the structure's answer to the fluid's load, after the last solve"}),
+          optional({ds::monitor_structure_stretch,
+                    DType::f64,
+                    {"n_steps"},
+                    "1",
+                    "coupled runs: max |sum Phi y| over the structure's surface / its size "
+                    "(linear modes stretch visibly above 0.05)"}),
       }};
   return spec;
 }

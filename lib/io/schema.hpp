@@ -118,6 +118,10 @@ inline constexpr const char* modal_time = "/modal/time";
 inline constexpr const char* modal_coordinates = "/modal/coordinates";
 inline constexpr const char* modal_velocities = "/modal/velocities";
 inline constexpr const char* modal_forces = "/modal/forces";
+inline constexpr const char* modal_added_mass = "/modal/added_mass";
+inline constexpr const char* monitor_coupling_iterations = "/monitors/coupling_iterations";
+inline constexpr const char* monitor_interface_residual = "/monitors/interface_residual";
+inline constexpr const char* monitor_structure_stretch = "/monitors/structure_stretch";
 }  // namespace ds
 
 /// Root attributes of hydromodal.results (besides the provenance ones).
@@ -134,6 +138,9 @@ inline constexpr const char* dt_limit_names = "dt_limit_names";  ///< code → n
 inline constexpr const char* phase_names = "phase_names";        ///< /run/phase_seconds entries
 inline constexpr const char* dx = "dx";                          ///< [m]
 inline constexpr const char* support = "support";                ///< h [m]
+inline constexpr const char* coupling_scheme = "coupling_scheme";  ///< explicit | strong
+/// Largest max|Σ Φ y| / body size of the run: above 0.05 the linear modes stretch visibly.
+inline constexpr const char* max_structure_stretch = "max_structure_stretch";
 }  // namespace results_attr
 
 const SchemaSpec& mesh_schema();

@@ -176,8 +176,14 @@ std::pair<Vec<D>, Vec<D>> FlowSolver<D>::wall_box() const {
 
 template <int D>
 void FlowSolver<D>::resort() {
-  const auto order = spatial_order<D>(points_.position, support());
+  resort_by(spatial_order<D>(points_.position, support()));
+}
+
+template <int D>
+void FlowSolver<D>::resort_by(std::span<const Index> order) {
   points_.reorder(order);
+  // The velocities at the step's start follow (they give each point's acceleration).
+  if (pending_old_velocity_.size() == order.size()) permute(pending_old_velocity_, order);
   permute(grad_u_, order);
   permute(acceleration_, order);
   permute(wall_distance_, order);
@@ -215,8 +221,17 @@ std::pair<double, StepLimit> FlowSolver<D>::stable_dt(double wall_speed) const {
 
 template <int D>
 StepMonitor FlowSolver<D>::step(double dt) {
+  begin_step(dt);
+  solve_pressure();
+  return finish_step();
+}
+
+template <int D>
+void FlowSolver<D>::begin_step(double dt) {
   HM_ASSERT(dt > 0.0, "flow: step dt = {} must be > 0", dt);
-  StepMonitor m;
+  HM_ASSERT(!in_step(), "flow: begin_step while step {} is in progress", step_ + 1);
+  StepMonitor& m = pending_;
+  m = StepMonitor{};
   m.step = step_ + 1;
   m.dt = dt;
   if (!(dt >= options_.dt_min)) {
@@ -227,8 +242,8 @@ StepMonitor FlowSolver<D>::step(double dt) {
     throw FlowDiverged(r);
   }
   auto t = Clock::now();
-  const double stable_step = stable_dt(last_max_wall_speed_).first;
-  const std::vector<Vec<D>> old_velocity = points_.velocity;
+  pending_stable_step_ = stable_dt(last_max_wall_speed_).first;
+  pending_old_velocity_ = points_.velocity;
   advect(dt);
   lap(t, m.seconds.advect);
   regularise_positions(dt);
@@ -242,20 +257,74 @@ StepMonitor FlowSolver<D>::step(double dt) {
   detect_free_surface<D>(points_, neighbours_, ops_, options_.free_surface);
   mark_sparse_points_as_surface();
   lap(t, m.seconds.free_surface);
-  std::vector<Vec<D>> viscous;
-  const auto predicted = predict(dt, viscous);
+  pending_predicted_ = predict(dt, pending_viscous_);
   lap(t, m.seconds.predictor);
-  project(dt, predicted, viscous, m);
-  t = Clock::now();
-  correct(dt, predicted);
-  smooth_velocity(dt, stable_step);
+  pending_types_ = points_.type;
+  pending_dt_ = dt;
+}
+
+template <int D>
+void FlowSolver<D>::solve_pressure() {
+  HM_ASSERT(in_step(), "flow: solve_pressure outside a step");
+  points_.type = pending_types_;  // undo the tension release of an earlier solve of this step
+  project(pending_dt_, pending_predicted_, pending_viscous_, pending_);
+}
+
+template <int D>
+void FlowSolver<D>::refresh_wall_kinematics() {
+  HM_ASSERT(in_step(), "flow: refresh_wall_kinematics outside a step");
+  update_wall_nodes<D>(points_, walls_);
+  const auto& o = options_;
+  const double dt = pending_dt_;
+  for (Index i = 0; i < points_.size(); ++i)
+    if (!is_fluid(points_, i))
+      pending_predicted_[i] = points_.wall_velocity[i] +
+                              dt * (o.gravity + pending_viscous_[i] - points_.wall_acceleration[i]);
+}
+
+template <int D>
+StepMonitor FlowSolver<D>::finish_step() {
+  HM_ASSERT(in_step(), "flow: finish_step outside a step");
+  StepMonitor& m = pending_;
+  const double dt = pending_dt_;
+  auto t = Clock::now();
+  correct(dt, pending_predicted_);
+  smooth_velocity(dt, pending_stable_step_);
   time_ += dt;
   ++step_;
-  update_monitors(dt, old_velocity, m);
+  update_monitors(dt, pending_old_velocity_, m);
   lap(t, m.seconds.corrector);
   m.time = time_;
+  pending_dt_ = 0.0;
+  pending_predicted_.clear();
+  pending_viscous_.clear();
+  pending_old_velocity_.clear();
   check_divergence(m);
   return m;
+}
+
+template <int D>
+std::vector<double> FlowSolver<D>::acceleration_pressure(std::span<const Vec<D>> acceleration) {
+  HM_ASSERT(acceleration.size() == static_cast<std::size_t>(points_.size()),
+            "flow: {} accelerations for {} points", acceleration.size(), points_.size());
+  const Index n = points_.size();
+  PoissonData data;
+  data.source.assign(static_cast<std::size_t>(n), 0.0);
+  data.dirichlet.assign(static_cast<std::size_t>(n), 0.0);
+  data.neumann.assign(static_cast<std::size_t>(n), 0.0);
+  for (Index i = 0; i < n; ++i)
+    if (!is_fluid(points_, i))
+      data.neumann[i] = -options_.density * points_.wall_normal[i].dot(acceleration[i]);
+  const std::vector<PointType> types = points_.type;  // assembly may demote weak wall rows
+  const auto system = assemble_poisson<D>(points_, neighbours_, ops_, data, options_.dx);
+  points_.type = types;
+  std::vector<double> pressure(static_cast<std::size_t>(n), 0.0);
+  const auto report = solve_poisson(system, pressure, options_.ppe);
+  if (!report.converged)
+    numerical_error(
+        "flow: the added-mass pressure solve did not converge ({} iterations, residual {:.3g})",
+        report.iterations, report.residual);
+  return pressure;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -820,6 +889,7 @@ void FlowSolver<D>::remove_escaped_points() {
   permute(grad_u_, kept);
   permute(acceleration_, kept);
   permute(wall_distance_, kept);
+  if (!pending_old_velocity_.empty()) permute(pending_old_velocity_, kept);
   outside_.assign(kept.size(), 0);
   step_start_.clear();
   neighbours_ = Neighbours{};  // stale indices

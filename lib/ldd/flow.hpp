@@ -172,7 +172,28 @@ class FlowSolver {
   std::pair<double, StepLimit> stable_dt(double wall_speed) const;
 
   /// One step to t + dt; the walls must already be at t + dt. Throws FlowDiverged.
+  /// The same as begin_step(dt); solve_pressure(); finish_step().
   StepMonitor step(double dt);
+
+  /// The step in three parts, for a structure whose wall kinematics depend on the pressure
+  /// (strong coupling re-solves the PPE with new wall velocities and accelerations):
+  /// begin_step does items 1–8 of the file comment (the walls already at t + dt),
+  /// solve_pressure item 9 (repeatable, after refresh_wall_kinematics), finish_step 10–12.
+  void begin_step(double dt);
+  void solve_pressure();
+  StepMonitor finish_step();
+  /// Within a step: re-reads the wall nodes' velocity and acceleration from the walls (moved by
+  /// the caller with the same positions) and the wall nodes' u* that the PPE sees.
+  void refresh_wall_kinematics();
+  /// The pressure [Pa] per point the PPE gives for the wall-node accelerations `acceleration`
+  /// [m/s², one per point, zero for fluid points] alone: no gravity, no velocity, no volume
+  /// term, p = 0 at the free surface — the added-mass response of the fluid (spec §3.5), for a
+  /// wall whose velocity changes by Δt·acceleration over the step (so that the wall nodes' u*
+  /// does not change, see predict). Uses the current neighbours and point types: call between
+  /// begin_step and finish_step, or after a step.
+  std::vector<double> acceleration_pressure(std::span<const Vec<D>> acceleration);
+  /// Whether a step is between begin_step and finish_step.
+  bool in_step() const { return pending_dt_ > 0.0; }
 
   const PointSet<D>& points() const { return points_; }
   const Neighbours& neighbours() const { return neighbours_; }
@@ -211,6 +232,7 @@ class FlowSolver {
   void update_monitors(double dt, std::span<const Vec<D>> old_velocity, StepMonitor& m);
   void remove_escaped_points();
   void resort();
+  void resort_by(std::span<const Index> order);
   std::pair<Vec<D>, Vec<D>> wall_box() const;  ///< the walls' present bounding box [m]
   void check_divergence(const StepMonitor& m) const;
 
@@ -235,6 +257,11 @@ class FlowSolver {
   double speed_limit_ = 0.0;
   double last_max_wall_speed_ = 0.0;
   double last_max_speed_ = 0.0;
+  // The step in progress (begin_step → finish_step).
+  double pending_dt_ = 0.0, pending_stable_step_ = 0.0;
+  StepMonitor pending_;
+  std::vector<Vec<D>> pending_old_velocity_, pending_predicted_, pending_viscous_;
+  std::vector<PointType> pending_types_;  ///< types before the PPE (tension release changes them)
 };
 
 }  // namespace hm::ldd

@@ -93,8 +93,9 @@ class WallNodeGrid {
 /// Shepard pressure at x from the nodes of `grid` within dx whose normal is within 60° of
 /// `side`; `weight` receives Σ W (0: dry).
 template <int D>
-double shepard_wall_pressure(const PointSet<D>& points, const WallNodeGrid<D>& grid,
-                             const Vec<D>& x, const Vec<D>& side, double dx, double& weight) {
+double shepard_wall_pressure(const PointSet<D>& points, std::span<const double> pressure,
+                             const WallNodeGrid<D>& grid, const Vec<D>& x, const Vec<D>& side,
+                             double dx, double& weight) {
   constexpr double min_alignment = 0.5;  // cos 60°
   double sum_w = 0.0, sum_wp = 0.0;
   grid.for_each_near(x, [&](Index j) {
@@ -103,7 +104,7 @@ double shepard_wall_pressure(const PointSet<D>& points, const WallNodeGrid<D>& g
     if (r >= dx) return;
     const double w = wendland_c2(r / dx);
     sum_w += w;
-    sum_wp += w * points.pressure[j];
+    sum_wp += w * pressure[j];
   });
   weight = sum_w;
   return sum_w > 0.0 ? sum_wp / sum_w : 0.0;
@@ -156,8 +157,9 @@ struct ElementLoad {
 };
 
 template <int D>
-ElementLoad<D> element_load(const PointSet<D>& points, const WallMesh<D>& wall,
-                            const WallNodeGrid<D>& grid, Index e, double dx) {
+ElementLoad<D> element_load(const PointSet<D>& points, std::span<const double> pressure,
+                            const WallMesh<D>& wall, const WallNodeGrid<D>& grid, Index e,
+                            double dx) {
   const auto& cell = wall.element(e);
   std::array<Vec<D>, D> x;
   for (int k = 0; k < D; ++k) x[k] = wall.vertices()[cell[k]];
@@ -172,7 +174,7 @@ ElementLoad<D> element_load(const PointSet<D>& points, const WallMesh<D>& wall,
     for (int s = 0; s < sides; ++s) {
       const Vec<D> side = s == 0 ? n : Vec<D>(-n);
       double weight = 0.0;
-      const double p = shepard_wall_pressure(points, grid, xq, side, dx, weight);
+      const double p = shepard_wall_pressure(points, pressure, grid, xq, side, dx, weight);
       traction -= p * side;
       if (weight > 0.0) load.wetted += q.measure;
     }
@@ -247,13 +249,18 @@ double probe_front(const PointSet<D>& points, const Vec<D>& direction, double ba
 
 template <int D>
 WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& wall, int body,
-                                 double dx) {
+                                 double dx, std::span<const double> pressure) {
   HM_ASSERT(dx > 0.0, "wall_pressure_loads: dx {} must be > 0", dx);
+  if (pressure.empty()) pressure = points.pressure;
+  HM_ASSERT(pressure.size() == points.pressure.size(),
+            "wall_pressure_loads: {} pressures for {} points", pressure.size(),
+            points.pressure.size());
   const WallNodeGrid<D> grid(points, body, dx);
   const Index elements = wall.element_count();
   std::vector<ElementLoad<D>> per_element(static_cast<std::size_t>(elements));
 #pragma omp parallel for schedule(dynamic, 16)
-  for (Index e = 0; e < elements; ++e) per_element[e] = element_load(points, wall, grid, e, dx);
+  for (Index e = 0; e < elements; ++e)
+    per_element[e] = element_load(points, pressure, wall, grid, e, dx);
   // Serial accumulation: deterministic sums, Σ vertex_force == total bit for bit.
   WallLoads<D> loads;
   loads.vertex_force.assign(wall.vertices().size(), Vec<D>::Zero());
@@ -277,7 +284,9 @@ template double probe_elevation<2>(const PointSet<2>&, const Vec<2>&, double, bo
 template double probe_elevation<3>(const PointSet<3>&, const Vec<3>&, double, bool*);
 template double probe_front<2>(const PointSet<2>&, const Vec<2>&, double, double, double, bool*);
 template double probe_front<3>(const PointSet<3>&, const Vec<3>&, double, double, double, bool*);
-template WallLoads<2> wall_pressure_loads<2>(const PointSet<2>&, const WallMesh<2>&, int, double);
-template WallLoads<3> wall_pressure_loads<3>(const PointSet<3>&, const WallMesh<3>&, int, double);
+template WallLoads<2> wall_pressure_loads<2>(const PointSet<2>&, const WallMesh<2>&, int, double,
+                                             std::span<const double>);
+template WallLoads<3> wall_pressure_loads<3>(const PointSet<3>&, const WallMesh<3>&, int, double,
+                                             std::span<const double>);
 
 }  // namespace hm::ldd

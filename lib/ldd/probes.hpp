@@ -66,8 +66,10 @@ struct WallLoads {
 /// pushes the wall away from itself) is spread to the element's vertices with the linear shape
 /// functions (the quadrature point's barycentrics), so Σ vertex_force = total exactly. A thin
 /// wall is loaded on both sides: nodes with normal along +n give −p⁺n, along −n give +p⁻n.
+/// `pressure`: one value per point instead of points.pressure (empty: points.pressure), e.g. the
+/// added-mass response FlowSolver::acceleration_pressure.
 template <int D>
 WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& wall, int body,
-                                 double dx);
+                                 double dx, std::span<const double> pressure = {});
 
 }  // namespace hm::ldd

@@ -1,9 +1,10 @@
 // fsi-simulate SCENE --mesh mesh.h5 [--mapped mapped.h5 | --modes modes.h5] -o
 // out/<case>/<variant>/results.h5 — the LDD free-surface flow with rigid walls (fixed or in
-// prescribed motion), or a structure-only run (loads on the modes, --modes); probes.csv and
-// snapshots/ are written next to results.h5. Flexible bodies (--mapped) come with the modal
-// coupling. The scene-stage shape of stage_main (echo, --validate, --if-stale), with optional
-// inputs: without --mesh the walls are meshed from the scene (fsi-mesh needs a [structure]).
+// prescribed motion) and, in a scene with a [structure], the structure as a flexible body coupled
+// two-way (--mapped), or a structure-only run (loads on the modes, --modes); probes.csv and
+// snapshots/ are written next to results.h5. The scene-stage shape of stage_main (echo, --validate,
+// --if-stale), with optional inputs: without --mesh the walls are meshed from the scene (fsi-mesh
+// needs a [structure]).
 #include "driver/simulate_stage.hpp"
 #include "io/artefact.hpp"
 #include "stage_main.hpp"
@@ -49,15 +50,16 @@ int main(int argc, char** argv) {
   const hm::stages::StageInfo info{
       .name = name,
       .summary =
-          "Run the LDD free-surface flow with rigid walls (fixed or in prescribed motion), or "
-          "the structure alone under prescribed loads (CFPI on its modes): results.h5 "
+          "Run the LDD free-surface flow with rigid walls (fixed or in prescribed motion) and "
+          "the structure coupled two-way (explicit or strong, [coupling]), or the structure "
+          "alone under prescribed loads (CFPI on its modes): results.h5 "
           "(hydromodal.results), probes.csv (and snapshots/ of a flow) next to it.",
       .inputs = {{"mesh",
                   "mesh artefact written by fsi-mesh (the walls); without it the [[wall]]s are "
                   "meshed from the scene as fsi-mesh would (rigid-only scenes)"},
                  {"mapped",
-                  "mapped-modes artefact written by fsi-map (optional; flexible "
-                  "bodies come in a later version)"},
+                  "mapped-modes artefact written by fsi-map: the flexible body of a scene with "
+                  "[fluid] and [structure] (its surface becomes the wall \"structure\")"},
                  {"modes",
                   "modes artefact written by fsi-modes: the structure of a structure-only run "
                   "(a scene with [[load]]s and no [fluid]; needs --mesh for the node groups)"}},

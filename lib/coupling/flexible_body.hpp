@@ -1,0 +1,146 @@
+#pragma once
+// A flexible body of a coupled run (LDD-SPEC §3): a wall of the flow whose vertices follow the
+// modal state, x_v = X_v + Σ_i Φ_{v,i} y_i (and the same sums of ẏ and ÿ for the wall velocity
+// and acceleration), loaded by the fluid through the modal forces F_i = s·Φ_iᵀ f, f the
+// consistent nodal pressure forces on the wall's vertices (ldd::wall_pressure_loads) and s the
+// structure's thickness in 2-D (the flow's forces are per metre, the 2-D modes are
+// mass-normalised for the thickness). The modes are integrated exactly by CFPI with the load
+// linear inside each step.
+//
+// One coupled step n → n+1 (coupled_step), spec §3.4:
+//   1. predictor: F_p = F^n, (y, ẏ)_p = CFPI((y, ẏ)^n; F^n → F_p), ÿ_p = F_p − 2ζωẏ_p − ω²y_p;
+//      the wall is placed there and the flow's step begins (advection ... prediction);
+//   2. the PPE is solved and F = s·Φᵀf measured;
+//      explicit: once (the paper's staggered scheme; unstable when the fluid's added mass of a
+//      mode exceeds its own, whatever the step — Causin, Gerbeau & Nobile 2005);
+//      strong: sub-iterations until the interface residual — the mismatch between the modal
+//      acceleration the fluid saw and the one the structure answers its load with — is below
+//      the tolerance. Each iteration is one PPE solve at the advected positions with new wall
+//      velocities and accelerations, updated by a quasi-Newton step whose Jacobian is the
+//      measured added-mass matrix M̂ (spec §3.4 remedies 1–2): the structure answers a load F
+//      with ÿ = κ∘F + r (κ, r from the CFPI coefficients), the fluid a wall acceleration ÿ with
+//      F ≈ F_k − M̂(ÿ − ÿ_k), so (I + diag κ M̂) ÿ_{k+1} = κ∘(F_k + M̂ ÿ_k) + r. With an exact
+//      M̂ and a linear PPE one iteration converges; the no-tension pass makes it nonlinear;
+//   3. the flow's step finishes; corrector: (y, ẏ)^{n+1} = CFPI((y, ẏ)^n; F^n → F^{n+1}) exactly
+//      on the load the fluid produced (the wall positions the fluid used lag by O(Δt²·ΔF)).
+// M̂_jk = −s·Φ_jᵀ f(p_k), p_k the PPE's answer to a unit acceleration of mode k alone
+// (FlowSolver::acceleration_pressure), symmetrised, measured at the start and every
+// added_mass_interval steps (the wetted surface changes).
+// Units: y [m·√kg], ẏ [m·√kg/s], ÿ [m·√kg/s²], F [N/√kg], Φ [1/√kg], M̂ [1] (modal masses).
+#include <span>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "ldd/flow.hpp"
+#include "modal/cfpi.hpp"
+
+namespace hm::coupling {
+
+/// The mode shapes of a body on the wall the fluid sees (hydromodal.mapped_modes).
+template <int D>
+struct ModalSurface {
+  std::vector<ldd::Vec<D>> x0;  ///< reference vertex positions [m], the wall's vertex order
+  Eigen::MatrixXd shapes;       ///< (n_vertices·D) × n_modes, DOF = D·vertex + c [1/√kg]
+  Eigen::VectorXd omega;        ///< [rad/s]
+  Eigen::VectorXd zeta;         ///< [1]
+  Eigen::Index modes() const { return shapes.cols(); }
+};
+
+enum class CouplingScheme : std::uint8_t { explicit_staggered, strong };
+const char* to_string(CouplingScheme scheme);
+
+struct CouplingOptions {
+  CouplingScheme scheme = CouplingScheme::strong;
+  double tolerance = 1e-3;        ///< interface residual (relative) that ends the sub-iterations
+  int max_iterations = 20;        ///< PPE solves per step at most (strong)
+  long added_mass_interval = 20;  ///< steps between added-mass measurements (strong)
+  double load_scale = 1.0;        ///< s: 2-D, the structure's thickness [m]; 3-D 1
+};
+
+/// What the coupling did in one step.
+struct CouplingMonitor {
+  int iterations = 0;     ///< PPE solves of the step
+  double residual = 0.0;  ///< interface residual after the last solve [1]
+  bool converged = true;  ///< residual ≤ tolerance (explicit: always)
+  double stretch = 0.0;   ///< max_v |Σ Φ_v y| / body size (linear-mode validity, flag > 5 %)
+  bool added_mass_measured = false;
+};
+
+template <int D>
+class FlexibleBody {
+ public:
+  /// `wall`: the index of this body's wall in the flow. InputError when the modes' vertex count
+  /// does not match the wall's or a frequency/damping is negative.
+  FlexibleBody(std::string name, ModalSurface<D> modes, int wall, const CouplingOptions& options,
+               const ldd::WallMesh<D>& wall_mesh);
+
+  const std::string& name() const { return name_; }
+  int wall() const { return wall_; }
+  const ModalSurface<D>& modes() const { return modes_; }
+  const CouplingOptions& options() const { return options_; }
+  const Eigen::VectorXd& y() const { return y_; }
+  const Eigen::VectorXd& v() const { return v_; }
+  const Eigen::VectorXd& a() const { return a_; }
+  const Eigen::VectorXd& F() const { return F_; }
+  const Eigen::MatrixXd& added_mass() const { return added_mass_; }
+  /// Size of the body: the diagonal of its reference bounding box [m].
+  double size() const { return size_; }
+
+  /// Displacement Σ Φ_v y of vertex v [m] at the current state.
+  ldd::Vec<D> displacement(Eigen::Index vertex) const;
+  /// Largest vertex speed |Σ Φ_v ẏ| at the current state [m/s].
+  double max_speed() const;
+  /// max_v |Σ Φ_v y| / size().
+  double stretch() const;
+
+  /// The fluid's modal forces s·Φᵀf [N/√kg] for the flow's pressure (or `pressure`).
+  Eigen::VectorXd modal_force(const ldd::FlowSolver<D>& flow,
+                              std::span<const double> pressure = {}) const;
+  /// Measures M̂ on the flow's current state for steps of dt [s] (one PPE solve per mode) and
+  /// keeps it.
+  void measure_added_mass(ldd::FlowSolver<D>& flow, double dt);
+
+  /// Sets the state at the flow's start: y = v = 0 and the load of the fluid at rest; with the
+  /// strong scheme the load and acceleration are made consistent with the fluid's reaction
+  /// (F(0⁺) = F_h − M̂ ÿ(0), spec §3.5 item 3: starting from F_h kicks the body at its dry rate).
+  void start(ldd::FlowSolver<D>& flow);
+
+  /// Moves `wall` to the modal state (y, v, a) (positions, velocities, accelerations).
+  void place(ldd::WallMesh<D>& wall, const Eigen::VectorXd& y, const Eigen::VectorXd& v,
+             const Eigen::VectorXd& a) const;
+
+  // The steps of coupled_step, per body.
+  void predict(ldd::WallMesh<D>& wall, double dt);
+  /// After a PPE solve: the new load estimate; places the wall's velocity and acceleration for
+  /// the next solve (positions unchanged) and returns the interface residual.
+  double iterate(ldd::WallMesh<D>& wall, const Eigen::VectorXd& measured);
+  void correct(const Eigen::VectorXd& measured);
+
+ private:
+  Eigen::VectorXd field(const Eigen::VectorXd& q, Eigen::Index vertex) const;
+  void update_coefficients(double dt);
+
+  std::string name_;
+  ModalSurface<D> modes_;
+  int wall_;
+  CouplingOptions options_;
+  double size_ = 0.0;
+  Eigen::VectorXd y_, v_, a_, F_;  ///< state at the current time
+  Eigen::MatrixXd added_mass_;     ///< M̂ (empty until measured)
+  // Within a step: the CFPI coefficients and the parts of y1, v1 that do not depend on F1.
+  std::vector<modal::CfpiCoefficients> coefficients_;
+  Eigen::VectorXd y_free_, v_free_, kappa_, rest_;
+  Eigen::VectorXd y_step_, a_step_;  ///< positions the fluid uses, acceleration it last saw
+  double coefficient_dt_ = -1.0;
+};
+
+/// One coupled step of the flow and its flexible bodies (the file comment). The rigid walls in
+/// motion must already be at t + dt. Returns the flow's monitor; `coupling` gets one monitor per
+/// body. Throws ldd::FlowDiverged like FlowSolver::step.
+template <int D>
+ldd::StepMonitor coupled_step(ldd::FlowSolver<D>& flow, std::span<FlexibleBody<D>> bodies,
+                              double dt, std::vector<CouplingMonitor>& coupling);
+
+}  // namespace hm::coupling
