@@ -1,11 +1,13 @@
 #include "coupling/flexible_body.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include <Eigen/Dense>
 
 #include "core/errors.hpp"
+#include "core/log.hpp"
 #include "ldd/probes.hpp"
 
 namespace hm::coupling {
@@ -133,6 +135,7 @@ void FlexibleBody<D>::start(ldd::FlowSolver<D>& flow) {
   const Eigen::VectorXd hydro = modal_force(flow);
   if (options_.scheme == CouplingScheme::strong) {
     measure_added_mass(flow, flow.stable_dt(0.0).first);
+    initial_added_mass_ = added_mass_;
     const Eigen::MatrixXd lhs = Eigen::MatrixXd::Identity(m, m) + added_mass_;
     const Eigen::VectorXd omega2 = modes_.omega.array().square();
     a_ = lhs.ldlt().solve(hydro - omega2.cwiseProduct(y_));
@@ -175,25 +178,49 @@ void FlexibleBody<D>::predict(ldd::WallMesh<D>& wall, double dt) {
   const Eigen::VectorXd v = v_free_ + d_v.cwiseProduct(load);
   a_step_ = kappa_.cwiseProduct(load) + rest_;
   place(wall, y_step_, v, a_step_);
+  iterations_ = 0;
+  if (added_mass_.size() > 0) jacobian_ = -added_mass_;
 }
 
 template <int D>
 double FlexibleBody<D>::iterate(ldd::WallMesh<D>& wall, const Eigen::VectorXd& measured) {
   const Eigen::Index m = modes_.modes();
+  // R(ā) = κ∘G(ā) + r − ā: the structure's answer to the fluid's load minus what the fluid saw.
   const Eigen::VectorXd answer = kappa_.cwiseProduct(measured) + rest_;
-  const double scale = std::max({answer.norm(), a_step_.norm(), 1e-300});
-  const double residual = (answer - a_step_).norm() / scale;
-  if (added_mass_.size() == 0) return residual;
-  const Eigen::MatrixXd lhs = Eigen::MatrixXd::Identity(m, m) + kappa_.asDiagonal() * added_mass_;
-  const Eigen::VectorXd a_next =
-      lhs.partialPivLu().solve(kappa_.cwiseProduct(measured + added_mass_ * a_step_) + rest_);
-  const Eigen::VectorXd load = measured - added_mass_ * (a_next - a_step_);
-  Eigen::VectorXd v(m);
-  for (Eigen::Index i = 0; i < m; ++i)
-    v[i] = v_free_[i] + coefficients_[static_cast<std::size_t>(i)].d_v * load[i];
-  a_step_ = a_next;
-  place(wall, y_step_, v, a_step_);
-  return residual;
+  const Eigen::VectorXd residual = answer - a_step_;
+  if (added_mass_.size() == 0) {  // explicit: no iteration
+    const double scale = std::max({answer.norm(), a_step_.norm(), 1e-300});
+    return residual.norm() / scale;
+  }
+  const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(m, m);
+  // Scale: the acceleration the present load gives the wet structure (the answer itself passes
+  // through zero at every turning point of the motion).
+  const Eigen::VectorXd wet = (identity + kappa_.asDiagonal() * added_mass_)
+                                  .partialPivLu()
+                                  .solve(kappa_.cwiseProduct(measured));
+  const double scale = std::max({answer.norm(), a_step_.norm(), wet.norm(), 1e-300});
+  const double relative = residual.norm() / scale;
+  // Good Broyden update of the fluid's Jacobian dG/dā from the last pair of iterates: the
+  // measured M̂ misses what the no-tension pass and the free surface add, and lags the geometry.
+  if (iterations_ > 0) {
+    const Eigen::VectorXd da = a_step_ - last_a_, dF = measured - last_F_;
+    const double norm2 = da.squaredNorm();
+    if (norm2 > 0.0) jacobian_ += (dF - jacobian_ * da) * da.transpose() / norm2;
+  }
+  Eigen::VectorXd delta =
+      -(kappa_.asDiagonal() * jacobian_ - identity).partialPivLu().solve(residual);
+  // A residual that grew: half a step (the iteration met a nonlinearity, e.g. wall nodes
+  // released from tension, or a Jacobian far off).
+  if (iterations_ > 0 && residual.norm() > last_residual_) delta *= 0.5;
+  last_a_ = a_step_;
+  last_F_ = measured;
+  last_residual_ = residual.norm();
+  ++iterations_;
+  a_step_ += delta;
+  // The wall's velocity follows its mean acceleration exactly (ẏ^{n+1} = ẏ^n + Δt·ā), so the
+  // wall nodes' u* stays U^n + Δt·g whatever the iterate (see predict).
+  place(wall, y_step_, v_ + coefficient_dt_ * a_step_, a_step_);
+  return relative;
 }
 
 template <int D>
@@ -212,12 +239,20 @@ void FlexibleBody<D>::correct(const Eigen::VectorXd& measured) {
 template <int D>
 ldd::StepMonitor coupled_step(ldd::FlowSolver<D>& flow, std::span<FlexibleBody<D>> bodies,
                               double dt, std::vector<CouplingMonitor>& coupling) {
+  using Clock = std::chrono::steady_clock;
+  const auto since = [](Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+  };
   coupling.assign(bodies.size(), CouplingMonitor{});
+  double own = 0.0, added = 0.0;  // coupling seconds of all bodies (one clock for all)
   auto wall_of = [&](const FlexibleBody<D>& b) -> ldd::WallMesh<D>& {
     return flow.walls()[static_cast<std::size_t>(b.wall())];
   };
+  auto t = Clock::now();
   for (auto& body : bodies) body.predict(wall_of(body), dt);
+  own += since(t);
   flow.begin_step(dt);
+  t = Clock::now();
   const long step = flow.step_count() + 1;
   bool strong = false;
   int max_iterations = 1;
@@ -231,26 +266,42 @@ ldd::StepMonitor coupled_step(ldd::FlowSolver<D>& flow, std::span<FlexibleBody<D
       coupling[b].added_mass_measured = true;
     }
   }
+  added += since(t);
+  own += since(t);
   std::vector<Eigen::VectorXd> measured(bodies.size());
   for (int iteration = 1;; ++iteration) {
     flow.solve_pressure();
+    t = Clock::now();
     bool converged = true;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
       measured[b] = bodies[b].modal_force(flow);
+      const Eigen::VectorXd seen = bodies[b].fluid_acceleration();
       const double residual = bodies[b].iterate(wall_of(bodies[b]), measured[b]);
       coupling[b].iterations = iteration;
       coupling[b].residual = residual;
       const bool body_strong = bodies[b].options().scheme == CouplingScheme::strong;
       coupling[b].converged = !body_strong || residual <= bodies[b].options().tolerance;
+      spdlog::debug(
+          "coupling: step {} iteration {}: body {} residual {:.3e}, F = [{:.6g}] at ā = [{:.6g}]",
+          step, iteration, bodies[b].name(), residual, fmt::join(measured[b], ", "),
+          fmt::join(seen, ", "));
       converged = converged && coupling[b].converged;
     }
-    if (!strong || converged || iteration >= max_iterations) break;
-    flow.refresh_wall_kinematics();
+    const bool done = !strong || converged || iteration >= max_iterations;
+    if (!done) flow.refresh_wall_kinematics();
+    own += since(t);
+    if (done) break;
   }
   const ldd::StepMonitor m = flow.finish_step();
+  t = Clock::now();
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     bodies[b].correct(measured[b]);
     coupling[b].stretch = bodies[b].stretch();
+  }
+  own += since(t);
+  for (auto& c : coupling) {
+    c.seconds = own / static_cast<double>(coupling.size());
+    c.added_mass_seconds = added / static_cast<double>(coupling.size());
   }
   return m;
 }

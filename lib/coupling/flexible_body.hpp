@@ -20,7 +20,9 @@
 //      measured added-mass matrix M̂ (spec §3.4 remedies 1–2): the structure answers a load F
 //      with ÿ = κ∘F + r (κ, r from the CFPI coefficients), the fluid a wall acceleration ÿ with
 //      F ≈ F_k − M̂(ÿ − ÿ_k), so (I + diag κ M̂) ÿ_{k+1} = κ∘(F_k + M̂ ÿ_k) + r. With an exact
-//      M̂ and a linear PPE one iteration converges; the no-tension pass makes it nonlinear;
+//      M̂ and a linear PPE one iteration converges; the no-tension pass makes it nonlinear, and
+//      M̂ lags the geometry, so the Jacobian −M̂ is corrected by Broyden updates from the
+//      iterates of the step, and a step whose residual grew is halved;
 //   3. the flow's step finishes; corrector: (y, ẏ)^{n+1} = CFPI((y, ẏ)^n; F^n → F^{n+1}) exactly
 //      on the load the fluid produced (the wall positions the fluid used lag by O(Δt²·ΔF)).
 // M̂_jk = −s·Φ_jᵀ f(p_k), p_k the PPE's answer to a unit acceleration of mode k alone
@@ -66,6 +68,11 @@ struct CouplingMonitor {
   bool converged = true;  ///< residual ≤ tolerance (explicit: always)
   double stretch = 0.0;   ///< max_v |Σ Φ_v y| / body size (linear-mode validity, flag > 5 %)
   bool added_mass_measured = false;
+  /// Wall-clock time of the coupling itself [s]: loads and modal forces, CFPI, wall updates
+  /// (mode superposition, normals, tree refit, wall nodes); the PPE re-solves of the
+  /// sub-iterations count as the flow's (StepMonitor::seconds), the added-mass solves here.
+  double seconds = 0.0;
+  double added_mass_seconds = 0.0;  ///< the part of `seconds` spent measuring M̂ [s]
 };
 
 template <int D>
@@ -85,6 +92,10 @@ class FlexibleBody {
   const Eigen::VectorXd& a() const { return a_; }
   const Eigen::VectorXd& F() const { return F_; }
   const Eigen::MatrixXd& added_mass() const { return added_mass_; }
+  /// M̂ at the start of the run (empty for the explicit scheme).
+  const Eigen::MatrixXd& initial_added_mass() const { return initial_added_mass_; }
+  /// Within a step: the modal acceleration the fluid's wall has now (the step's mean).
+  const Eigen::VectorXd& fluid_acceleration() const { return a_step_; }
   /// Size of the body: the diagonal of its reference bounding box [m].
   double size() const { return size_; }
 
@@ -129,10 +140,17 @@ class FlexibleBody {
   double size_ = 0.0;
   Eigen::VectorXd y_, v_, a_, F_;  ///< state at the current time
   Eigen::MatrixXd added_mass_;     ///< M̂ (empty until measured)
+  Eigen::MatrixXd initial_added_mass_;
   // Within a step: the CFPI coefficients and the parts of y1, v1 that do not depend on F1.
   std::vector<modal::CfpiCoefficients> coefficients_;
   Eigen::VectorXd y_free_, v_free_, kappa_, rest_;
   Eigen::VectorXd y_step_, a_step_;  ///< positions the fluid uses, acceleration it last saw
+  // The sub-iterations of a step: the fluid's Jacobian dF/dā (from −M̂, Broyden-updated) and the
+  // last iterate.
+  Eigen::MatrixXd jacobian_;
+  Eigen::VectorXd last_a_, last_F_;
+  double last_residual_ = 0.0;
+  int iterations_ = 0;
   double coefficient_dt_ = -1.0;
 };
 

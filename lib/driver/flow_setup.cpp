@@ -409,6 +409,8 @@ FlowSetup<D> flow_setup(const io::Scene& scene,
     setup.structure_wall = static_cast<int>(setup.walls.size());
     setup.motions.push_back({structure->vertices, std::nullopt});
     setup.walls.emplace_back(*structure, structure_wall_name, false);
+    setup.walls.back().set_solid(true);  // fluid on both faces of a gate thinner than h
+    setup.walls.back().set_releases_tension(scene.boolean("coupling.release_tension"));
     setup.wall_names.push_back(structure_wall_name);
   }
   coupling::place_walls<D>(setup.walls, setup.motions, 0.0);

@@ -3,6 +3,7 @@
 #include <array>
 #include <limits>
 #include <numbers>
+#include <numeric>
 #include <optional>
 
 #include <fmt/format.h>
@@ -221,11 +222,24 @@ void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
   w.write(ds::modal_coordinates, io::MatrixRM(y));
   w.write(ds::modal_velocities, io::MatrixRM(v));
   w.write(ds::modal_forces, io::MatrixRM(F));
-  if (body.added_mass().size() > 0) w.write(ds::modal_added_mass, io::MatrixRM(body.added_mass()));
+  if (body.added_mass().size() > 0) {
+    w.write(ds::modal_added_mass, io::MatrixRM(body.added_mass()));
+    w.write(ds::modal_added_mass_initial, io::MatrixRM(body.initial_added_mass()));
+  }
   w.write(ds::monitor_coupling_iterations,
           coupling_column<std::int64_t>(r.coupling, [](const C& c) { return c.iterations; }));
   w.write(ds::monitor_interface_residual,
           coupling_column<double>(r.coupling, [](const C& c) { return c.residual; }));
+  const auto seconds = coupling_column<double>(r.coupling, [](const C& c) { return c.seconds; });
+  const auto added =
+      coupling_column<double>(r.coupling, [](const C& c) { return c.added_mass_seconds; });
+  w.write(ds::monitor_coupling_seconds, seconds);
+  const double total = std::accumulate(seconds.begin(), seconds.end(), 0.0);
+  w.set_attribute(ra::coupling_seconds, total);
+  w.set_attribute(ra::added_mass_seconds, std::accumulate(added.begin(), added.end(), 0.0));
+  spdlog::info("{}: coupling {:.3g} s of {:.3g} s ({:.1f} %), of which added-mass solves {:.3g} s",
+               stage_name, total, r.wall_seconds, 100 * total / std::max(r.wall_seconds, 1e-12),
+               std::accumulate(added.begin(), added.end(), 0.0));
   const auto stretch = coupling_column<double>(r.coupling, [](const C& c) { return c.stretch; });
   w.write(ds::monitor_structure_stretch, stretch);
   const double largest = stretch.empty() ? 0.0 : *std::max_element(stretch.begin(), stretch.end());

@@ -361,6 +361,12 @@ const std::vector<KeyDecl>& scene_keys() {
               "strong: PPE solves per step at most (a step that ends above the tolerance is "
               "recorded in /monitors/interface_residual)",
               simulate_stage),
+      boolean("coupling.release_tension", "false",
+              "release the structure's wall nodes in tension (p < 0 → p = 0, as on rigid walls "
+              "with solver.release_wall_tension): a separation model, but a contact "
+              "nonlinearity the sub-iterations converge poorly on (the elastic gate diverged "
+              "with it at dx = 5 mm); off, the fluid holds on to the structure",
+              simulate_stage),
       integer("coupling.added_mass_interval", "20", 1, 1000000,
               "strong: steps between measurements of the modal added-mass matrix (one PPE per "
               "mode)",

@@ -238,7 +238,8 @@ const SchemaSpec& results_schema() {
       "probe_columns (the names of the columns of /probes/values as in the CSV header, "
       "comma-separated), dt_limit_names (the names of the /monitors/dt_limit codes in code order: "
       "cfl, viscous, acceleration, maximum, output) and phase_names (the entries of "
-      "/run/phase_seconds); a coupled run also coupling_scheme and max_structure_stretch. A "
+      "/run/phase_seconds); a coupled run also coupling_scheme, max_structure_stretch, "
+      "coupling_seconds and added_mass_seconds. A "
       "diverged run has status \"diverged: ...\" (so --if-stale reruns "
       "it). A flow run has the /monitors and /run datasets; a structure-only run (no fluid) the "
       "/modal ones instead; a coupled run (fluid and structure) both.",
@@ -329,6 +330,11 @@ const SchemaSpec& results_schema() {
                     "1",
                     "coupled runs (strong scheme): the last measured modal added-mass matrix of "
                     "the fluid (in units of the modal mass)"}),
+          optional({ds::modal_added_mass_initial,
+                    DType::f64,
+                    {"n_modes", "n_modes"},
+                    "1",
+                    "coupled runs (strong scheme): the modal added-mass matrix at the start"}),
           optional({ds::monitor_coupling_iterations,
                     DType::i64,
                     {"n_steps"},
@@ -346,6 +352,12 @@ const SchemaSpec& results_schema() {
                     "1",
                     "coupled runs: max |sum Phi y| over the structure's surface / its size "
                     "(linear modes stretch visibly above 0.05)"}),
+          optional({ds::monitor_coupling_seconds,
+                    DType::f64,
+                    {"n_steps"},
+                    "s",
+                    "coupled runs: wall-clock time of the coupling in the step (loads, CFPI, "
+                    "wall updates, added-mass solves; not the PPE re-solves)"}),
       }};
   return spec;
 }

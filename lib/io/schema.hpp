@@ -119,9 +119,11 @@ inline constexpr const char* modal_coordinates = "/modal/coordinates";
 inline constexpr const char* modal_velocities = "/modal/velocities";
 inline constexpr const char* modal_forces = "/modal/forces";
 inline constexpr const char* modal_added_mass = "/modal/added_mass";
+inline constexpr const char* modal_added_mass_initial = "/modal/added_mass_initial";
 inline constexpr const char* monitor_coupling_iterations = "/monitors/coupling_iterations";
 inline constexpr const char* monitor_interface_residual = "/monitors/interface_residual";
 inline constexpr const char* monitor_structure_stretch = "/monitors/structure_stretch";
+inline constexpr const char* monitor_coupling_seconds = "/monitors/coupling_seconds";
 }  // namespace ds
 
 /// Root attributes of hydromodal.results (besides the provenance ones).
@@ -141,6 +143,10 @@ inline constexpr const char* support = "support";                ///< h [m]
 inline constexpr const char* coupling_scheme = "coupling_scheme";  ///< explicit | strong
 /// Largest max|Σ Φ y| / body size of the run: above 0.05 the linear modes stretch visibly.
 inline constexpr const char* max_structure_stretch = "max_structure_stretch";
+/// Coupling wall-clock totals [s]: loads, CFPI, wall updates, added-mass solves (not the PPE
+/// re-solves of the sub-iterations), and the added-mass part alone.
+inline constexpr const char* coupling_seconds = "coupling_seconds";
+inline constexpr const char* added_mass_seconds = "added_mass_seconds";
 }  // namespace results_attr
 
 const SchemaSpec& mesh_schema();

@@ -727,14 +727,20 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
     // No tension at walls (§0.2 item 6): nodes pulling on the fluid become Dirichlet p = 0.
     Index released = 0;
     for (Index i = 0; i < points_.size(); ++i)
-      if (points_.type[i] == PointType::wall && points_.pressure[i] < 0.0) {
+      if (points_.type[i] == PointType::wall && points_.pressure[i] < 0.0 && releases_tension(i)) {
         points_.type[i] = PointType::surface;
         ++released;
       }
     if (released == 0) break;
   }
   for (Index i = 0; i < points_.size(); ++i)
-    if (!is_fluid(points_, i)) points_.pressure[i] = std::max(points_.pressure[i], 0.0);
+    if (!is_fluid(points_, i) && releases_tension(i))
+      points_.pressure[i] = std::max(points_.pressure[i], 0.0);
+}
+
+template <int D>
+bool FlowSolver<D>::releases_tension(Index i) const {
+  return walls_[static_cast<std::size_t>(points_.host[i].body)].releases_tension();
 }
 
 template <int D>

@@ -24,7 +24,7 @@
 //      wall node only the normal velocity difference counts: the node's tangential velocity is
 //      the no-slip condition of the viscous term, and in the divergence it drove a sliding
 //      surge tip past the Ritter speed); wall nodes in tension become Dirichlet and the system
-//      is solved again (§0.2 item 6);
+//      is solved again (§0.2 item 6), except on walls that keep tension (flexible bodies);
 //  10. CORRECTOR u = u* − (Δt/ρ)∇p; isolated points are ballistic;
 //  11. SMOOTHING (the stabiliser of §0.1 D4): XSPH over fluid neighbours only, renormalised,
 //      u_i += ε' Σ_j (W_ij/Σ_k W_ik)(u_j − u_i) — walls exert no friction through it; ε' =
@@ -225,6 +225,7 @@ class FlowSolver {
                                 const std::vector<Vec<D>>& viscous);
   double volume_drift() const;
   void set_surface_pressure(std::vector<double>& dirichlet) const;
+  bool releases_tension(Index wall_node) const;  ///< its wall's releases_tension()
   void project(double dt, std::span<const Vec<D>> predicted, std::span<const Vec<D>> viscous,
                StepMonitor& m);
   void correct(double dt, std::span<const Vec<D>> predicted);

@@ -544,7 +544,7 @@ std::int64_t cut_pairs_through_thin_walls(Neighbours& nb, const PointSet<D>& poi
   const Index n = points.size();
   std::vector<int> thin;
   for (std::size_t w = 0; w < walls.size(); ++w)
-    if (walls[w].thin()) thin.push_back(static_cast<int>(w));
+    if (walls[w].thin() || walls[w].solid()) thin.push_back(static_cast<int>(w));
   if (thin.empty()) return 0;
   // near[i] bit w: point i is within h of thin wall w.
   std::vector<std::uint32_t> near(static_cast<std::size_t>(n), 0);
@@ -554,7 +554,9 @@ std::int64_t cut_pairs_through_thin_walls(Neighbours& nb, const PointSet<D>& poi
       if (std::abs(walls[thin[t]].closest(points.position[i]).signed_distance) < nb.radius)
         near[i] |= 1u << t;
   auto behind_node = [&](Index i, Index j) {
-    if (points.kind[i] != PointKind::wall || !walls[points.host[i].body].thin()) return false;
+    if (points.kind[i] != PointKind::wall) return false;
+    const auto& w = walls[static_cast<std::size_t>(points.host[i].body)];
+    if (!(w.thin() || w.solid())) return false;
     return (points.position[j] - points.position[i]).dot(points.wall_normal[i]) < 0.0;
   };
   const auto before = nb.pairs();

@@ -39,6 +39,16 @@ class WallMesh {
 
   const std::string& name() const { return name_; }
   bool thin() const { return thin_; }
+  /// A solid body the fluid flows around (a flexible gate, a plate): neighbour pairs crossing
+  /// it are cut like those through a thin wall, so the two faces of a body thinner than the
+  /// support h do not see each other's fluid.
+  bool solid() const { return solid_; }
+  void set_solid(bool solid) { solid_ = solid; }
+  /// Whether this wall's nodes in tension (p < 0) are released (made Dirichlet p = 0) when the
+  /// flow's release_wall_tension is on (the default). A flexible body keeps its tension: the
+  /// release is a contact nonlinearity that breaks the coupling's sub-iterations.
+  bool releases_tension() const { return releases_tension_; }
+  void set_releases_tension(bool release) { releases_tension_ = release; }
   Index element_count() const { return static_cast<Index>(cells_.size()); }
   const std::vector<Vec<D>>& vertices() const { return x_; }
   const std::array<Index, D>& element(Index e) const { return cells_[e]; }
@@ -74,6 +84,8 @@ class WallMesh {
   bool on_open_end(Index e, const Vec<D>& barycentric) const;
   std::string name_;
   bool thin_ = false;
+  bool solid_ = false;
+  bool releases_tension_ = true;
   std::vector<Vec<D>> x_, v_, a_;
   std::vector<std::array<Index, D>> cells_;
   std::vector<Vec<D>> face_normal_, vertex_normal_;
@@ -94,9 +106,10 @@ Index add_wall_nodes(PointSet<D>& points, const WallMesh<D>& wall, int body, dou
 template <int D>
 void update_wall_nodes(PointSet<D>& points, std::span<const WallMesh<D>> walls);
 
-/// Cuts neighbour pairs through thin walls (§1.5): pairs whose segment crosses a thin wall,
-/// tested only when both points are within h of it, and pairs from a thin wall's node to a point
-/// behind it (r_ij·n_i < 0). Returns the number of directed pairs removed.
+/// Cuts neighbour pairs through thin walls and solid bodies (§1.5): pairs whose segment crosses
+/// such a wall, tested only when both points are within h of it, and pairs from such a wall's
+/// node to a point behind it (r_ij·n_i < 0: the other face of a gate thinner than h). Returns
+/// the number of directed pairs removed.
 template <int D>
 std::int64_t cut_pairs_through_thin_walls(Neighbours& neighbours, const PointSet<D>& points,
                                           std::span<const WallMesh<D>> walls);

@@ -112,6 +112,47 @@ TEST(LddWalls, ThinBaffleCutsPairs2D) {
   EXPECT_GT(kept_across_top, 0);  // above the baffle the two sides still talk
 }
 
+// A solid body thinner than the support (the 5 mm elastic gate at h = 6.25 mm): the fluid on
+// one face must not see the other face's wall nodes nor the fluid beyond. Before solid walls cut
+// pairs, the left fluid coupled to the right face's nodes (normals pointing away from it) and to
+// the fluid leaking past the gate.
+TEST(LddWalls, SolidBodyThinnerThanTheSupportCutsPairs2D) {
+  const double dx = 0.0025, t = 0.005, x0 = 0.1;
+  std::vector<WallMesh<2>> walls;
+  walls.push_back(test::box_tank<2>(Vec<2>(0.2, 0.1), 4 * dx));
+  mesh::SurfaceMesh gate;  // closed outline of [x0, x0 + t] × [0, 0.05], normals outwards
+  gate.dim = 2;
+  gate.vertices.resize(4, 2);
+  gate.vertices << x0, 0.0, x0, 0.05, x0 + t, 0.05, x0 + t, 0.0;
+  gate.cells.resize(4, 2);
+  gate.cells << 0, 1, 1, 2, 2, 3, 3, 0;
+  walls.emplace_back(gate, "gate");
+  walls.back().set_solid(true);
+  PointSet<2> pts;
+  for (const auto& x : seed_box<2>({Vec<2>::Zero(), Vec<2>(0.2, 0.04)}, dx, walls))
+    pts.add_fluid(x);
+  for (int b = 0; b < 2; ++b) add_wall_nodes<2>(pts, walls[b], b, dx);
+  auto nb = find_neighbours<2>(pts.position, 2.5 * dx);
+  const auto cut = cut_pairs_through_thin_walls<2>(nb, pts, walls);
+  EXPECT_GT(cut, 0);
+  const auto side = [&](Index i) {  // −1 left of the gate, +1 right, 0 on it
+    const double x = pts.position[i].x();
+    return x < x0 - 1e-12 ? -1 : x > x0 + t + 1e-12 ? 1 : 0;
+  };
+  for (Index i = 0; i < pts.size(); ++i) {
+    if (pts.kind[i] != PointKind::fluid) continue;
+    for (Index j : nb.of(i)) {
+      if (pts.kind[j] == PointKind::fluid) {
+        ASSERT_EQ(side(i), side(j))
+            << pts.position[i].transpose() << " | " << pts.position[j].transpose();
+      } else if (pts.host[j].body == 1) {  // a gate node: only those facing the point
+        ASSERT_GE((pts.position[i] - pts.position[j]).dot(pts.wall_normal[j]), 0.0)
+            << pts.position[i].transpose() << " sees the node at " << pts.position[j].transpose();
+      }
+    }
+  }
+}
+
 TEST(LddSeeding, FillsBoxAndClosedSurface) {
   const auto w = test::box_tank<3>(Vec<3>(0.2, 0.1, 0.1), 0.05);
   const auto x = seed_inside<3>(w, 0.01);
