@@ -149,6 +149,21 @@ void FlexibleBody<D>::start(ldd::FlowSolver<D>& flow) {
 }
 
 template <int D>
+void FlexibleBody<D>::restore(const BodyState& state) {
+  const Eigen::Index m = modes_.modes();
+  if (state.y.size() != m || state.v.size() != m || state.a.size() != m || state.F.size() != m)
+    input_error("flexible body '{}': the checkpoint holds {} modes, the mode set {}", name_,
+                state.y.size(), m);
+  y_ = state.y;
+  v_ = state.v;
+  a_ = state.a;
+  F_ = state.F;
+  added_mass_ = state.added_mass;
+  initial_added_mass_ = state.initial_added_mass;
+  coefficient_dt_ = -1.0;
+}
+
+template <int D>
 void FlexibleBody<D>::predict(ldd::WallMesh<D>& wall, double dt) {
   const Eigen::Index m = modes_.modes();
   update_coefficients(dt);

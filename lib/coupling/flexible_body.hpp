@@ -75,6 +75,12 @@ struct CouplingMonitor {
   double added_mass_seconds = 0.0;  ///< the part of `seconds` spent measuring M̂ [s]
 };
 
+/// What a flexible body carries between steps (a checkpoint).
+struct BodyState {
+  Eigen::VectorXd y, v, a, F;
+  Eigen::MatrixXd added_mass, initial_added_mass;  ///< empty for the explicit scheme
+};
+
 template <int D>
 class FlexibleBody {
  public:
@@ -117,6 +123,10 @@ class FlexibleBody {
   /// strong scheme the load and acceleration are made consistent with the fluid's reaction
   /// (F(0⁺) = F_h − M̂ ÿ(0), spec §3.5 item 3: starting from F_h kicks the body at its dry rate).
   void start(ldd::FlowSolver<D>& flow);
+
+  BodyState state() const { return {y_, v_, a_, F_, added_mass_, initial_added_mass_}; }
+  /// Continues from `state` instead of start(); InputError when the mode count differs.
+  void restore(const BodyState& state);
 
   /// Moves `wall` to the modal state (y, v, a) (positions, velocities, accelerations).
   void place(ldd::WallMesh<D>& wall, const Eigen::VectorXd& y, const Eigen::VectorXd& v,

@@ -117,21 +117,30 @@ void ModalHistory::record(double t, const Eigen::VectorXd& y_, const Eigen::Vect
 
 template <int D>
 RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
-              const TimeControl& time, const RunSinks<D>& sinks,
-              std::span<FlexibleBody<D>> bodies) {
-  const double t0 = solver.time();
-  if (!(time.end > t0))
-    input_error("time.end = {} s must be after the start time {} s", time.end, t0);
-  if (time.snapshot_interval < 0.0 || time.probe_interval < 0.0)
-    input_error("time.snapshot_interval = {} s and time.probe_interval = {} s must be ≥ 0",
-                time.snapshot_interval, time.probe_interval);
+              const TimeControl& time, const RunSinks<D>& sinks, std::span<FlexibleBody<D>> bodies,
+              const RunResult* resume) {
+  const double now0 = solver.time();
+  if (!(time.end > now0))
+    input_error("time.end = {} s must be after the start time {} s", time.end, now0);
+  if (time.snapshot_interval < 0.0 || time.probe_interval < 0.0 || time.checkpoint_interval < 0.0)
+    input_error(
+        "time.snapshot_interval = {} s, time.probe_interval = {} s and "
+        "time.checkpoint_interval = {} s must be ≥ 0",
+        time.snapshot_interval, time.probe_interval, time.checkpoint_interval);
   HM_ASSERT(motions.size() == solver.walls().size(), "{} wall motions for {} walls", motions.size(),
             solver.walls().size());
   const auto started = std::chrono::steady_clock::now();
-  RunResult r;
+  RunResult r = resume ? *resume : RunResult{};
+  const double t0 = resume ? resume->start_time : now0;
+  r.start_time = t0;
+  r.status = RunStatus::completed;
+  r.divergence_report.clear();
+  const double earlier_seconds = resume ? resume->wall_seconds : 0.0;
   OutputClock snapshots(t0, time.end, time.snapshot_interval);
   OutputClock probes(t0, time.end, time.probe_interval);
+  OutputClock checkpoints(t0, time.end, time.checkpoint_interval);
   const bool probe_every_step = time.probe_interval == 0.0;
+  const bool checkpointing = time.checkpoint_interval > 0.0 && sinks.checkpoint;
 
   const auto record_probes = [&] {
     if (!sinks.evaluate_probes) return;
@@ -147,21 +156,28 @@ RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
     sinks.snapshot(solver, kind);
     ++r.snapshots;
   };
-
-  r.modal.resize(bodies.size());
   const auto record_modal = [&] {
     for (std::size_t b = 0; b < bodies.size(); ++b)
       r.modal[b].record(solver.time(), bodies[b].y(), bodies[b].v(), bodies[b].F());
   };
-  for (auto& body : bodies) body.start(solver);
-  record_modal();
-  record_probes();
-  snapshot(SnapshotKind::regular);
+
+  if (resume) {
+    HM_ASSERT(r.modal.size() == bodies.size(), "resume: {} modal histories for {} bodies",
+              r.modal.size(), bodies.size());
+    for (OutputClock* clock : {&snapshots, &probes, &checkpoints}) clock->advance_past(now0);
+  } else {
+    r.modal.resize(bodies.size());
+    for (auto& body : bodies) body.start(solver);
+    record_modal();
+    record_probes();
+    snapshot(SnapshotKind::regular);
+  }
   try {
     while (!snapshots.done()) {  // the end time is the snapshot clock's last time
       const double t = solver.time();
-      const double target =
+      double target =
           probe_every_step ? snapshots.next() : std::min(snapshots.next(), probes.next());
+      if (checkpointing && !checkpoints.done()) target = std::min(target, checkpoints.next());
       double body_speed = 0.0;
       for (const auto& body : bodies) body_speed = std::max(body_speed, body.max_speed());
       const auto [dt, limit] = step_size<D>(solver, motions, body_speed, t, target);
@@ -187,6 +203,14 @@ RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
         snapshot(SnapshotKind::regular);
         snapshots.advance_past(now);
       }
+      if (checkpointing && checkpoints.due(now)) {
+        r.end_time = now;
+        r.wall_seconds =
+            earlier_seconds +
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+        sinks.checkpoint(solver, bodies, r);
+        checkpoints.advance_past(now);
+      }
     }
   } catch (const ldd::FlowDiverged& e) {
     r.status = RunStatus::diverged;
@@ -195,6 +219,7 @@ RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
   }
   r.end_time = solver.time();
   r.wall_seconds =
+      earlier_seconds +
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
   return r;
 }
@@ -202,8 +227,8 @@ RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
 template void place_walls<2>(std::span<ldd::WallMesh<2>>, std::span<const WallMotion>, double);
 template void place_walls<3>(std::span<ldd::WallMesh<3>>, std::span<const WallMotion>, double);
 template RunResult run<2>(ldd::FlowSolver<2>&, std::span<const WallMotion>, const TimeControl&,
-                          const RunSinks<2>&, std::span<FlexibleBody<2>>);
+                          const RunSinks<2>&, std::span<FlexibleBody<2>>, const RunResult*);
 template RunResult run<3>(ldd::FlowSolver<3>&, std::span<const WallMotion>, const TimeControl&,
-                          const RunSinks<3>&, std::span<FlexibleBody<3>>);
+                          const RunSinks<3>&, std::span<FlexibleBody<3>>, const RunResult*);
 
 }  // namespace hm::coupling

@@ -46,6 +46,9 @@ struct TimeControl {
   double end = 0.0;                ///< [s], after the solver's start time
   double snapshot_interval = 0.0;  ///< [s]; 0: snapshots at the start and the end only
   double probe_interval = 0.0;     ///< [s]; 0: a probe row after every step
+  /// [s]; 0: no checkpoints. Checkpoint times bound the steps like the other output times, so a
+  /// run restarted from one takes the same steps as the run that wrote it.
+  double checkpoint_interval = 0.0;
 };
 
 /// Times start + k·interval (k ≥ 1) below the end, then the end itself; interval 0: the end only.
@@ -79,6 +82,11 @@ struct RunSinks {
   std::function<void(const ldd::FlowSolver<D>&, SnapshotKind)> snapshot;
   /// After every step (progress bar, logs).
   std::function<void(const ldd::StepMonitor&)> progress;
+  /// At checkpoint times (TimeControl::checkpoint_interval), after that time's probes and
+  /// snapshot: the whole state to continue from (the result so far included).
+  std::function<void(const ldd::FlowSolver<D>&, std::span<const FlexibleBody<D>>,
+                     const struct RunResult&)>
+      checkpoint;
 };
 
 struct ProbeSeries {
@@ -96,6 +104,7 @@ struct ModalHistory {
 
 struct RunResult {
   RunStatus status = RunStatus::completed;
+  double start_time = 0.0;  ///< [s] the run's first start (kept across restarts)
   /// Per step, one monitor per flexible body (empty without bodies).
   std::vector<std::vector<CouplingMonitor>> coupling;
   std::vector<ModalHistory> modal;  ///< per flexible body
@@ -110,12 +119,14 @@ struct RunResult {
 
 /// Runs `solver` from its current time to time.end with the walls in `motions` (parallel to
 /// solver.walls()) and the flexible `bodies` (their walls' motions are ignored: the modes move
-/// them), started here (FlexibleBody::start) and stepped by coupled_step. InputError when
+/// them), started here (FlexibleBody::start) and stepped by coupled_step. `resume`: the result
+/// so far of a run restarted from a checkpoint (solver and bodies restored to its time): the
+/// loop continues it (its outputs, monitors and output clocks) instead of starting. InputError when
 /// time.end is not after the solver's time or an interval is negative; FlowDiverged is caught
 /// and reported in the result (other errors propagate).
 template <int D>
 RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
               const TimeControl& time, const RunSinks<D>& sinks,
-              std::span<FlexibleBody<D>> bodies = {});
+              std::span<FlexibleBody<D>> bodies = {}, const RunResult* resume = nullptr);
 
 }  // namespace hm::coupling

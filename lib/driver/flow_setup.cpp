@@ -419,6 +419,7 @@ FlowSetup<D> flow_setup(const io::Scene& scene,
   setup.time.end = time.number("end");
   setup.time.snapshot_interval = time.number("snapshot_interval");
   setup.time.probe_interval = time.number("probe_interval");
+  setup.time.checkpoint_interval = time.number("checkpoint_interval");
   setup.probes = make_probes<D>(scene, setup);
   return setup;
 }

@@ -16,6 +16,7 @@
 #include "coupling/probes.hpp"
 #include "coupling/run.hpp"
 #include "coupling/structure_run.hpp"
+#include "driver/checkpoint_io.hpp"
 #include "driver/flow_setup.hpp"
 #include "driver/structure_io.hpp"
 #include "fem/static_solve.hpp"
@@ -301,6 +302,17 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
                  coupling::to_string(bodies.front().options().scheme));
   }
 
+  std::optional<Checkpoint<D>> checkpoint;
+  const std::string parameters = simulate_parameters(scene, inputs.mesh.empty());
+  if (!inputs.restart.empty()) {
+    checkpoint = read_checkpoint<D>(inputs.restart, parameters, bodies.size());
+    solver.restore(std::move(checkpoint->flow));
+    for (std::size_t b = 0; b < bodies.size(); ++b) bodies[b].restore(checkpoint->bodies[b]);
+    records.push_back(io::input_record("restart", inputs.restart));
+    spdlog::info("{}: restarting from {} at t = {} s (step {})", stage_name,
+                 inputs.restart.string(), solver.time(), solver.step_count());
+  }
+
   const std::filesystem::path folder = output.parent_path().empty() ? "." : output.parent_path();
   std::vector<std::string> columns = coupling::probe_columns<D>(setup.probes);
   for (const SurfaceProbe& p : displacement) {
@@ -312,7 +324,13 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     csv.emplace(folder / "probes.csv", columns);
   else
     std::filesystem::remove(folder / "probes.csv");
+  if (csv && checkpoint)  // the rows up to the checkpoint, as the interrupted run wrote them
+    for (std::size_t k = 0; k < checkpoint->run.probes.time.size(); ++k)
+      csv->write_row(checkpoint->run.probes.time[k], checkpoint->run.probes.rows[k]);
   ldd::SnapshotWriter<D> snapshots(folder / "snapshots", "flow");
+  if (checkpoint)
+    snapshots.resume(static_cast<std::size_t>(checkpoint->run.snapshots), solver.walls(),
+                     wall_names);
   std::optional<ldd::SnapshotWriter<D>> failed;
   Progress progress(stage_name, setup.time.end, "s", spdlog::get_level() > spdlog::level::info);
 
@@ -335,9 +353,17 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     writer.write(s.time(), s.points(), s.walls(), wall_names);
   };
   sinks.progress = [&](const ldd::StepMonitor& m) { progress.update(m.time); };
+  sinks.checkpoint = [&](const ldd::FlowSolver<D>& s,
+                         std::span<const coupling::FlexibleBody<D>> flexible,
+                         const coupling::RunResult& so_far) {
+    const auto path = checkpoint_path(folder, s.time());
+    write_checkpoint<D>(path, parameters, records, s, flexible, so_far);
+    spdlog::info("{}: checkpoint at t = {} s: {}", stage_name, s.time(), path.string());
+  };
 
   const coupling::RunResult r =
-      coupling::run<D>(solver, setup.motions, setup.time, sinks, std::span(bodies));
+      coupling::run<D>(solver, setup.motions, setup.time, sinks, std::span(bodies),
+                       checkpoint ? &checkpoint->run : nullptr);
   if (csv) csv->finish();
   const bool completed = r.status == coupling::RunStatus::completed;
   if (completed) progress.finish();

@@ -23,6 +23,8 @@ struct SimulateInputs {
   std::filesystem::path mapped;
   /// hydromodal.modes: the modes of a structure-only run (a scene with no [fluid]).
   std::filesystem::path modes;
+  /// hydromodal.checkpoint of this scene's run: continue from it instead of starting.
+  std::filesystem::path restart;
 };
 
 /// The canonical parameters results.h5 records (and --if-stale compares): the fsi-simulate keys,

@@ -259,6 +259,11 @@ const std::vector<KeyDecl>& scene_keys() {
       number("time.probe_interval", "0.0", "s", 0, inf,
              "physical time between probe rows (0: every step); the end time always gets a row",
              simulate_stage),
+      number("time.checkpoint_interval", "0.0", "s", 0, inf,
+             "physical time between checkpoints (checkpoints/t_<time>.h5 next to results.h5, "
+             "for fsi-simulate --restart; 0: none); checkpoint times bound the steps like the "
+             "other output times",
+             simulate_stage),
       number("time.cfl", "0.3", "1", 0, 1, "Courant number C_u: Δt ≤ C_u·dx/max|u|", simulate_stage,
              true),
       number("time.acceleration_number", "0.25", "1", 0, 1, "C_a: Δt ≤ C_a·sqrt(dx/max|a|)",

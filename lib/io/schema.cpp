@@ -362,8 +362,71 @@ const SchemaSpec& results_schema() {
   return spec;
 }
 
+const SchemaSpec& checkpoint_schema() {
+  auto f64 = [](const char* path, std::vector<std::string> shape, const char* unit, const char* doc,
+                bool required = true) {
+    return DatasetSpec{path, DType::f64, std::move(shape), unit, doc, required};
+  };
+  auto i64 = [](const char* path, std::vector<std::string> shape, const char* doc) {
+    return DatasetSpec{path, DType::i64, std::move(shape), "", doc, true};
+  };
+  static const SchemaSpec spec{
+      schema::checkpoint,
+      1,
+      "The state of an fsi-simulate run at a checkpoint time (time.checkpoint_interval), from "
+      "which `fsi-simulate --restart` continues exactly: every point with its fields, the last "
+      "neighbour lists, the walls' vertex kinematics, the flexible bodies' modal state and the "
+      "run so far (monitors, probe rows, modal histories). Root attributes: time [s], step, "
+      "start_time [s], escaped, initial_fluid, initial_volume, last_volume_drift, "
+      "last_max_wall_speed, last_max_speed, neighbour_radius [m], snapshots, wall_seconds. "
+      "Written for one scene: a restart checks its parameters.",
+      {
+          f64("/points/position", {"n_points", "dim"}, "m", "point positions"),
+          f64("/points/velocity", {"n_points", "dim"}, "m/s", "point velocities"),
+          f64("/points/pressure", {"n_points"}, "Pa", "gauge pressure"),
+          i64("/points/kind", {"n_points"}, "0 fluid, 1 wall node"),
+          i64("/points/type", {"n_points"},
+              "0 interior, 1 surface, 2 wall, 3 isolated, 4 inactive"),
+          f64("/points/wall_normal", {"n_points", "dim"}, "1", "wall nodes: unit normal"),
+          f64("/points/wall_velocity", {"n_points", "dim"}, "m/s", "wall nodes: velocity"),
+          f64("/points/wall_acceleration", {"n_points", "dim"}, "m/s^2",
+              "wall nodes: acceleration"),
+          i64("/points/host_body", {"n_points"}, "wall nodes: wall index (-1 for fluid points)"),
+          i64("/points/host_element", {"n_points"}, "wall nodes: element of the wall"),
+          f64("/points/host_barycentric", {"n_points", "dim"}, "1", "wall nodes: barycentrics"),
+          f64("/points/velocity_gradient", {"n_points", "dim2"}, "1/s", "grad u, row-major"),
+          f64("/points/wall_distance", {"n_points"}, "m", "lower bound of the wall clearance"),
+          f64("/points/acceleration", {"n_points"}, "m/s^2", "|du/dt| of the last step"),
+          i64("/neighbours/offsets", {"n_offsets"}, "list of i: indices[offsets[i], offsets[i+1])"),
+          i64("/neighbours/indices", {"n_pairs"}, "neighbour point indices"),
+          i64("/walls/offsets", {"n_wall_offsets"}, "vertices of wall w: rows offsets[w] ... "),
+          f64("/walls/x", {"n_wall_vertices", "dim"}, "m", "wall vertex positions"),
+          f64("/walls/v", {"n_wall_vertices", "dim"}, "m/s", "wall vertex velocities"),
+          f64("/walls/a", {"n_wall_vertices", "dim"}, "m/s^2", "wall vertex accelerations"),
+          f64("/bodies/y", {"n_bodies", "n_modes"}, "m*sqrt(kg)", "modal coordinates", false),
+          f64("/bodies/v", {"n_bodies", "n_modes"}, "m*sqrt(kg)/s", "modal velocities", false),
+          f64("/bodies/a", {"n_bodies", "n_modes"}, "m*sqrt(kg)/s^2", "modal accelerations", false),
+          f64("/bodies/F", {"n_bodies", "n_modes"}, "N/sqrt(kg)", "modal forces", false),
+          f64("/bodies/added_mass", {"n_bodies", "n_modes", "n_modes"}, "1", "M hat", false),
+          f64("/bodies/added_mass_initial", {"n_bodies", "n_modes", "n_modes"}, "1",
+              "M hat at the start", false),
+          f64("/run/monitors", {"n_steps", "n_monitor_fields"}, "column",
+              "the StepMonitor of every step so far, packed (driver/checkpoint_io.cpp)", false),
+          f64("/run/coupling", {"n_steps", "n_coupling_fields"}, "column",
+              "the CouplingMonitors of every step so far, packed", false),
+          f64("/run/phase_totals", {"n_phases"}, "s", "phase seconds so far"),
+          f64("/run/probe_time", {"n_probe_rows"}, "s", "probe times so far", false),
+          f64("/run/probe_values", {"n_probe_rows", "n_probe_columns"}, "column",
+              "probe rows so far", false),
+          f64("/run/modal", {"n_bodies", "n_modal_rows", "n_modal_fields"}, "column",
+              "per body and modal row: t, y, v, F", false),
+      }};
+  return spec;
+}
+
 std::vector<const SchemaSpec*> all_schemas() {
-  return {&mesh_schema(), &modes_schema(), &mapped_modes_schema(), &results_schema()};
+  return {&mesh_schema(), &modes_schema(), &mapped_modes_schema(), &results_schema(),
+          &checkpoint_schema()};
 }
 
 const SchemaSpec* find_schema(std::string_view name) {

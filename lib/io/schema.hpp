@@ -55,6 +55,7 @@ inline constexpr const char* mesh = "hydromodal.mesh";
 inline constexpr const char* modes = "hydromodal.modes";
 inline constexpr const char* mapped_modes = "hydromodal.mapped_modes";
 inline constexpr const char* results = "hydromodal.results";
+inline constexpr const char* checkpoint = "hydromodal.checkpoint";
 }  // namespace schema
 
 namespace ds {
@@ -150,6 +151,7 @@ inline constexpr const char* added_mass_seconds = "added_mass_seconds";
 }  // namespace results_attr
 
 const SchemaSpec& mesh_schema();
+const SchemaSpec& checkpoint_schema();
 const SchemaSpec& modes_schema();
 const SchemaSpec& mapped_modes_schema();
 const SchemaSpec& results_schema();

@@ -165,6 +165,71 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
 }
 
 template <int D>
+FlowState<D> FlowSolver<D>::state() const {
+  HM_ASSERT(!in_step(), "flow: state() within step {}", step_ + 1);
+  FlowState<D> s;
+  s.points = points_;
+  s.neighbours = neighbours_;
+  s.velocity_gradient = grad_u_;
+  s.wall_distance = wall_distance_;
+  s.acceleration = acceleration_;
+  for (const auto& w : walls_) {
+    s.wall_x.push_back(w.vertices());
+    std::vector<Vec<D>> v, a;
+    for (std::size_t k = 0; k < w.vertices().size(); ++k) {
+      v.push_back(w.vertex_velocity(static_cast<Index>(k)));
+      a.push_back(w.vertex_acceleration(static_cast<Index>(k)));
+    }
+    s.wall_v.push_back(std::move(v));
+    s.wall_a.push_back(std::move(a));
+  }
+  s.time = time_;
+  s.step = step_;
+  s.escaped = escaped_;
+  s.last_volume_drift = last_volume_drift_;
+  s.initial_volume = initial_volume_;
+  s.initial_fluid = initial_fluid_;
+  s.last_max_wall_speed = last_max_wall_speed_;
+  s.last_max_speed = last_max_speed_;
+  return s;
+}
+
+template <int D>
+void FlowSolver<D>::restore(FlowState<D> s) {
+  HM_ASSERT(!in_step(), "flow: restore() within step {}", step_ + 1);
+  if (s.wall_x.size() != walls_.size())
+    input_error("flow: the checkpoint has {} walls, the scene {}", s.wall_x.size(), walls_.size());
+  for (std::size_t w = 0; w < walls_.size(); ++w) {
+    if (s.wall_x[w].size() != walls_[w].vertices().size())
+      input_error("flow: wall '{}' has {} vertices in the checkpoint, {} in the scene",
+                  walls_[w].name(), s.wall_x[w].size(), walls_[w].vertices().size());
+    walls_[w].move(s.wall_x[w], s.wall_v[w], s.wall_a[w]);
+  }
+  const auto n = s.points.position.size();
+  HM_ASSERT(s.neighbours.points() == static_cast<Index>(n) && s.velocity_gradient.size() == n &&
+                s.wall_distance.size() == n && s.acceleration.size() == n,
+            "flow: inconsistent state of {} points", n);
+  points_ = std::move(s.points);
+  neighbours_ = std::move(s.neighbours);
+  grad_u_ = std::move(s.velocity_gradient);
+  wall_distance_ = std::move(s.wall_distance);
+  acceleration_ = std::move(s.acceleration);
+  time_ = s.time;
+  step_ = s.step;
+  escaped_ = s.escaped;
+  last_volume_drift_ = s.last_volume_drift;
+  initial_volume_ = s.initial_volume;
+  initial_fluid_ = s.initial_fluid;
+  last_max_wall_speed_ = s.last_max_wall_speed;
+  last_max_speed_ = s.last_max_speed;
+  outside_.clear();
+  step_start_.clear();
+  // The operators of the last step are not carried between steps; those of the restored
+  // points keep acceleration_pressure usable right away.
+  ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators);
+}
+
+template <int D>
 std::pair<Vec<D>, Vec<D>> FlowSolver<D>::wall_box() const {
   Vec<D> lower = walls_[0].lower(), upper = walls_[0].upper();
   for (const auto& w : walls_) {
@@ -951,5 +1016,7 @@ void FlowSolver<D>::check_divergence(const StepMonitor& m) const {
 
 template class FlowSolver<2>;
 template class FlowSolver<3>;
+template struct FlowState<2>;
+template struct FlowState<3>;
 
 }  // namespace hm::ldd

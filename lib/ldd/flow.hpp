@@ -152,6 +152,24 @@ class FlowDiverged : public NumericalError {
   DivergenceReport report_;
 };
 
+/// Everything FlowSolver carries from one step to the next (a checkpoint): restoring it into a
+/// solver built from the same scene continues the run exactly as if it had not stopped.
+template <int D>
+struct FlowState {
+  PointSet<D> points;
+  Neighbours neighbours;  ///< the last step's lists (PBD of the next step starts from them)
+  std::vector<Mat<D>> velocity_gradient;
+  std::vector<double> wall_distance, acceleration;
+  /// Wall vertex positions [m], velocities [m/s], accelerations [m/s²], one list per wall.
+  std::vector<std::vector<Vec<D>>> wall_x, wall_v, wall_a;
+  double time = 0.0;
+  long step = 0;
+  Index escaped = 0;
+  double last_volume_drift = 0.0, initial_volume = 0.0, last_max_wall_speed = 0.0,
+         last_max_speed = 0.0;
+  Index initial_fluid = 0;
+};
+
 template <int D>
 class FlowSolver {
  public:
@@ -192,6 +210,11 @@ class FlowSolver {
   /// does not change, see predict). Uses the current neighbours and point types: call between
   /// begin_step and finish_step, or after a step.
   std::vector<double> acceleration_pressure(std::span<const Vec<D>> acceleration);
+  /// The state between steps (see FlowState); not within a step.
+  FlowState<D> state() const;
+  /// Continues from `state` (taken from a solver of the same scene: same walls and options).
+  /// InputError when the walls do not match.
+  void restore(FlowState<D> state);
   /// Whether a step is between begin_step and finish_step.
   bool in_step() const { return pending_dt_ > 0.0; }
 

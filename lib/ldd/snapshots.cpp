@@ -227,6 +227,35 @@ std::filesystem::path SnapshotWriter<D>::write(double t, const PointSet<D>& poin
 }
 
 template <int D>
+void SnapshotWriter<D>::resume(std::size_t count, std::span<const WallMesh<D>> walls,
+                               std::span<const std::string> wall_names) {
+  validate_wall_names(wall_names, walls.size(), folder_);
+  entries_.clear();
+  for (std::size_t k = 0; k < count; ++k) {
+    Entry entry;
+    entry.file = fmt::format("{}_{:06d}.h5", stem_, k);
+    const std::filesystem::path path = folder_ / entry.file;
+    H5Handle file(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose);
+    if (!file.valid())
+      input_error("cannot resume the snapshots: '{}' is missing or unreadable", path.string());
+    H5Handle time(H5Aopen(file.get(), "time", H5P_DEFAULT), H5Aclose);
+    H5Handle points(H5Dopen2(file.get(), "/points/position", H5P_DEFAULT), H5Dclose);
+    if (!time.valid() || !points.valid() || H5Aread(time.get(), H5T_NATIVE_DOUBLE, &entry.time) < 0)
+      input_error("cannot resume the snapshots: '{}' has no time or points", path.string());
+    H5Handle space(H5Dget_space(points.get()), H5Sclose);
+    hsize_t dims[2] = {0, 0};
+    H5Sget_simple_extent_dims(space.get(), dims, nullptr);
+    entry.points = dims[0];
+    for (std::size_t w = 0; w < walls.size(); ++w) {
+      entry.walls.push_back(wall_names[w]);
+      entry.wall_vertices.push_back(walls[w].vertices().size());
+      entry.wall_cells.push_back(static_cast<std::uint64_t>(walls[w].element_count()));
+    }
+    entries_.push_back(std::move(entry));
+  }
+}
+
+template <int D>
 void SnapshotWriter<D>::write_index() const {
   std::string xml =
       "<?xml version=\"1.0\" ?>\n<!DOCTYPE Xdmf SYSTEM \"Xdmf.dtd\" []>\n"

@@ -18,7 +18,7 @@
 // Kill-safety: each .h5 is written under a temporary name and renamed into place; the .xdmf is
 // then rewritten the same way. A killed run leaves an index of every complete snapshot.
 // The index lists the snapshots of this writer only: a new writer on the same folder starts again
-// at k = 0 and overwrites.
+// at k = 0 and overwrites, unless it resumes the earlier ones (a restart).
 #include <filesystem>
 #include <span>
 #include <string>
@@ -41,6 +41,13 @@ class SnapshotWriter {
   std::filesystem::path write(double t, const PointSet<D>& points,
                               std::span<const WallMesh<D>> walls,
                               std::span<const std::string> wall_names);
+
+  /// Takes over the first `count` snapshots already in the folder (a run restarted from a
+  /// checkpoint): their times and point counts are read from the files, the walls are those
+  /// given (the same scene). The next write is snapshot `count`. InputError when a file is
+  /// missing or unreadable.
+  void resume(std::size_t count, std::span<const WallMesh<D>> walls,
+              std::span<const std::string> wall_names);
 
   std::filesystem::path xdmf_path() const;
   std::size_t count() const { return entries_.size(); }

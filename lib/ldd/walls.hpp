@@ -60,6 +60,8 @@ class WallMesh {
   void move(std::span<const Vec<D>> x, std::span<const Vec<D>> v = {},
             std::span<const Vec<D>> a = {});
 
+  Vec<D> vertex_velocity(Index v) const { return v_[static_cast<std::size_t>(v)]; }  ///< [m/s]
+  Vec<D> vertex_acceleration(Index v) const { return a_[static_cast<std::size_t>(v)]; }
   Vec<D> point_at(Index e, const Vec<D>& barycentric) const;
   Vec<D> velocity_at(Index e, const Vec<D>& barycentric) const;
   Vec<D> acceleration_at(Index e, const Vec<D>& barycentric) const;

@@ -40,7 +40,8 @@ void simulate(const hm::stages::StageArgs& args) {
   hm::driver::run_simulate_stage(scene,
                                  {.mesh = args.inputs.at("mesh"),
                                   .mapped = args.inputs.at("mapped"),
-                                  .modes = args.inputs.at("modes")},
+                                  .modes = args.inputs.at("modes"),
+                                  .restart = args.inputs.at("restart")},
                                  args.output);
 }
 
@@ -62,7 +63,11 @@ int main(int argc, char** argv) {
                   "[fluid] and [structure] (its surface becomes the wall \"structure\")"},
                  {"modes",
                   "modes artefact written by fsi-modes: the structure of a structure-only run "
-                  "(a scene with [[load]]s and no [fluid]; needs --mesh for the node groups)"}},
+                  "(a scene with [[load]]s and no [fluid]; needs --mesh for the node groups)"},
+                 {"restart",
+                  "checkpoint of this scene's run (checkpoints/t_<time>.h5, written every "
+                  "time.checkpoint_interval): continue from it; with the same inputs the result "
+                  "is the uninterrupted run's (time.end may be changed to run on)"}},
       .flags = {{"if-stale",
                  "run only if the output is missing or stale: written by another tool version, "
                  "with other scene parameters, or from inputs whose content changed (content "
