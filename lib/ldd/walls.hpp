@@ -108,10 +108,11 @@ Index add_wall_nodes(PointSet<D>& points, const WallMesh<D>& wall, int body, dou
 template <int D>
 void update_wall_nodes(PointSet<D>& points, std::span<const WallMesh<D>> walls);
 
-/// Cuts neighbour pairs through thin walls and solid bodies (§1.5): pairs whose segment crosses
-/// such a wall, tested only when both points are within h of it, and pairs from such a wall's
-/// node to a point behind it (r_ij·n_i < 0: the other face of a gate thinner than h). Returns
-/// the number of directed pairs removed.
+/// Cuts neighbour pairs through walls (§1.5): pairs from any wall node to a point behind it
+/// (r_ij·n_i < 0: the other face of a block or gate thinner than h); pairs whose segment crosses
+/// a thin wall or a solid body, tested only when both points are within h of it; every pair of
+/// a wall node buried in a solid body or facing into the wall a solid body stands on (the floor
+/// under a gate and the gate's foot). Returns the number of directed pairs removed.
 template <int D>
 std::int64_t cut_pairs_through_thin_walls(Neighbours& neighbours, const PointSet<D>& points,
                                           std::span<const WallMesh<D>> walls);
