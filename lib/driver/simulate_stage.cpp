@@ -253,6 +253,32 @@ void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
         stage_name, 100 * largest);
 }
 
+/// Snapshot fields of the flexible bodies' walls: the displacement Σ Φ y and the pressure of
+/// the wall node at each vertex (no fields for the other walls; none at all without bodies).
+template <int D>
+std::vector<ldd::WallFields<D>> body_fields(const ldd::FlowSolver<D>& flow,
+                                            std::span<const coupling::FlexibleBody<D>> bodies) {
+  std::vector<ldd::WallFields<D>> fields;
+  if (bodies.empty()) return fields;
+  fields.resize(flow.walls().size());
+  const auto& points = flow.points();
+  for (const auto& body : bodies) {
+    const auto& wall = flow.walls()[static_cast<std::size_t>(body.wall())];
+    auto& f = fields[static_cast<std::size_t>(body.wall())];
+    const auto n = static_cast<Eigen::Index>(wall.vertices().size());
+    for (Eigen::Index v = 0; v < n; ++v) f.displacement.push_back(body.displacement(v));
+    f.pressure.assign(static_cast<std::size_t>(n), 0.0);
+    for (ldd::Index i = 0; i < points.size(); ++i) {
+      const auto& h = points.host[i];
+      if (points.kind[i] != ldd::PointKind::wall || h.body != body.wall()) continue;
+      for (int k = 0; k < D; ++k)
+        if (h.barycentric[k] == 1.0)
+          f.pressure[static_cast<std::size_t>(wall.element(h.element)[k])] = points.pressure[i];
+    }
+  }
+  return fields;
+}
+
 template <int D>
 void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
               const std::filesystem::path& output) {
@@ -330,7 +356,7 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   ldd::SnapshotWriter<D> snapshots(folder / "snapshots", "flow");
   if (checkpoint)
     snapshots.resume(static_cast<std::size_t>(checkpoint->run.snapshots), solver.walls(),
-                     wall_names);
+                     wall_names, body_fields<D>(solver, bodies));
   std::optional<ldd::SnapshotWriter<D>> failed;
   Progress progress(stage_name, setup.time.end, "s", spdlog::get_level() > spdlog::level::info);
 
@@ -350,7 +376,7 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     if (kind == coupling::SnapshotKind::diverged && !failed)
       failed.emplace(folder / "snapshots", "diverged");
     auto& writer = kind == coupling::SnapshotKind::regular ? snapshots : *failed;
-    writer.write(s.time(), s.points(), s.walls(), wall_names);
+    writer.write(s.time(), s.points(), s.walls(), wall_names, body_fields<D>(s, bodies));
   };
   sinks.progress = [&](const ldd::StepMonitor& m) { progress.update(m.time); };
   sinks.checkpoint = [&](const ldd::FlowSolver<D>& s,

@@ -122,6 +122,26 @@ void write_wall(hid_t file, const std::filesystem::path& where, const WallMesh<D
                 {static_cast<hsize_t>(wall.element_count()), static_cast<hsize_t>(D)}, "");
 }
 
+template <int D>
+void write_wall_fields(hid_t file, const std::filesystem::path& where, const WallMesh<D>& wall,
+                       const std::string& name, const WallFields<D>& fields) {
+  const std::string group = "/walls/" + name;
+  const hsize_t n = wall.vertices().size();
+  if (!fields.displacement.empty()) {
+    HM_ASSERT(fields.displacement.size() == n, "wall '{}': {} displacements for {} vertices", name,
+              fields.displacement.size(), n);
+    const auto u = as_xyz<D>(fields.displacement);
+    write_dataset(file, where, group + "/displacement", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE, u.data(),
+                  {n, 3}, "m");
+  }
+  if (!fields.pressure.empty()) {
+    HM_ASSERT(fields.pressure.size() == n, "wall '{}': {} pressures for {} vertices", name,
+              fields.pressure.size(), n);
+    write_dataset(file, where, group + "/pressure", H5T_NATIVE_DOUBLE, H5T_IEEE_F64LE,
+                  fields.pressure.data(), {n}, "Pa");
+  }
+}
+
 // ---- XDMF
 // -----------------------------------------------------------------------------------------
 
@@ -198,7 +218,10 @@ std::filesystem::path SnapshotWriter<D>::xdmf_path() const {
 template <int D>
 std::filesystem::path SnapshotWriter<D>::write(double t, const PointSet<D>& points,
                                                std::span<const WallMesh<D>> walls,
-                                               std::span<const std::string> wall_names) {
+                                               std::span<const std::string> wall_names,
+                                               std::span<const WallFields<D>> fields) {
+  HM_ASSERT(fields.empty() || fields.size() == walls.size(), "{} wall fields for {} walls",
+            fields.size(), walls.size());
   validate_wall_names(wall_names, walls.size(), folder_);
   Entry entry;
   entry.file = fmt::format("{}_{:06d}.h5", stem_, entries_.size());
@@ -214,6 +237,10 @@ std::filesystem::path SnapshotWriter<D>::write(double t, const PointSet<D>& poin
     write_points<D>(file.get(), path, points);
     for (std::size_t w = 0; w < walls.size(); ++w) {
       write_wall<D>(file.get(), path, walls[w], wall_names[w]);
+      if (!fields.empty())
+        write_wall_fields<D>(file.get(), path, walls[w], wall_names[w], fields[w]);
+      entry.wall_displacement.push_back(!fields.empty() && !fields[w].displacement.empty());
+      entry.wall_pressure.push_back(!fields.empty() && !fields[w].pressure.empty());
       entry.walls.push_back(wall_names[w]);
       entry.wall_vertices.push_back(walls[w].vertices().size());
       entry.wall_cells.push_back(static_cast<std::uint64_t>(walls[w].element_count()));
@@ -228,7 +255,8 @@ std::filesystem::path SnapshotWriter<D>::write(double t, const PointSet<D>& poin
 
 template <int D>
 void SnapshotWriter<D>::resume(std::size_t count, std::span<const WallMesh<D>> walls,
-                               std::span<const std::string> wall_names) {
+                               std::span<const std::string> wall_names,
+                               std::span<const WallFields<D>> fields) {
   validate_wall_names(wall_names, walls.size(), folder_);
   entries_.clear();
   for (std::size_t k = 0; k < count; ++k) {
@@ -247,6 +275,8 @@ void SnapshotWriter<D>::resume(std::size_t count, std::span<const WallMesh<D>> w
     H5Sget_simple_extent_dims(space.get(), dims, nullptr);
     entry.points = dims[0];
     for (std::size_t w = 0; w < walls.size(); ++w) {
+      entry.wall_displacement.push_back(!fields.empty() && !fields[w].displacement.empty());
+      entry.wall_pressure.push_back(!fields.empty() && !fields[w].pressure.empty());
       entry.walls.push_back(wall_names[w]);
       entry.wall_vertices.push_back(walls[w].vertices().size());
       entry.wall_cells.push_back(static_cast<std::uint64_t>(walls[w].element_count()));
@@ -290,12 +320,19 @@ void SnapshotWriter<D>::write_index() const {
           "      <Grid Name=\"{}\" GridType=\"Uniform\">\n"
           "        <Topology TopologyType=\"{}\" NumberOfElements=\"{}\" NodesPerElement=\"{}\">"
           "{}</Topology>\n"
-          "        <Geometry GeometryType=\"XYZ\">{}</Geometry>\n"
-          "      </Grid>\n",
+          "        <Geometry GeometryType=\"XYZ\">{}</Geometry>\n",
           xml_escaped(e.walls[w]), D == 2 ? "Polyline" : "Triangle", e.wall_cells[w], D,
           hdf_item(e.file, group + "/cells", fmt::format("{} {}", e.wall_cells[w], D), "Int", 8),
           hdf_item(e.file, group + "/vertices", fmt::format("{} 3", e.wall_vertices[w]), "Float",
                    8));
+      const std::string m = std::to_string(e.wall_vertices[w]);
+      if (e.wall_displacement[w])
+        xml += attribute_xml("displacement", true,
+                             hdf_item(e.file, group + "/displacement", m + " 3", "Float", 8));
+      if (e.wall_pressure[w])
+        xml +=
+            attribute_xml("pressure", false, hdf_item(e.file, group + "/pressure", m, "Float", 8));
+      xml += "      </Grid>\n";
     }
     xml += "    </Grid>\n";
   }

@@ -12,6 +12,7 @@
 //   /points/kind      n     uint8   PointKind (0 fluid, 1 wall node)
 //   /walls/<name>/vertices  m × 3 float64 [m]
 //   /walls/<name>/cells     c × D int64, 0-based (segments in 2-D, triangles in 3-D)
+//   /walls/<name>/displacement, /walls/<name>/pressure   m × 3 [m], m [Pa], when given
 // `<folder>/<stem>.xdmf`: GridType="Collection" CollectionType="Temporal", one spatial
 // collection per snapshot holding the points (Polyvertex) and each wall (Polyline / Triangle).
 //
@@ -28,6 +29,14 @@
 
 namespace hm::ldd {
 
+/// Optional per-vertex fields of a wall in a snapshot (empty: not written): the displacement of
+/// a flexible body from its reference shape [m] and the wall pressure [Pa].
+template <int D>
+struct WallFields {
+  std::vector<Vec<D>> displacement;
+  std::vector<double> pressure;
+};
+
 template <int D>
 class SnapshotWriter {
  public:
@@ -38,16 +47,18 @@ class SnapshotWriter {
   /// Writes snapshot k at time t [s]: the points and the walls, walls[i] named wall_names[i]
   /// (same length; names are unique HDF5 link names: no '/' or '.'-only names, InputError).
   /// Returns the path of the .h5 file. InputError when the files cannot be written.
+  /// `fields`: empty, or one per wall (/walls/<name>/displacement, /walls/<name>/pressure).
   std::filesystem::path write(double t, const PointSet<D>& points,
                               std::span<const WallMesh<D>> walls,
-                              std::span<const std::string> wall_names);
+                              std::span<const std::string> wall_names,
+                              std::span<const WallFields<D>> fields = {});
 
   /// Takes over the first `count` snapshots already in the folder (a run restarted from a
   /// checkpoint): their times and point counts are read from the files, the walls are those
   /// given (the same scene). The next write is snapshot `count`. InputError when a file is
   /// missing or unreadable.
   void resume(std::size_t count, std::span<const WallMesh<D>> walls,
-              std::span<const std::string> wall_names);
+              std::span<const std::string> wall_names, std::span<const WallFields<D>> fields = {});
 
   std::filesystem::path xdmf_path() const;
   std::size_t count() const { return entries_.size(); }
@@ -59,6 +70,7 @@ class SnapshotWriter {
     std::uint64_t points = 0;
     std::vector<std::string> walls;
     std::vector<std::uint64_t> wall_vertices, wall_cells;
+    std::vector<char> wall_displacement, wall_pressure;  ///< per wall: field written
   };
   void write_index() const;
   std::filesystem::path folder_;
