@@ -8,62 +8,16 @@
 #include <omp.h>
 
 #include <chrono>
-#include <cmath>
-#include <numbers>
 
-#include "coupling/flexible_body.hpp"
-#include "ldd/seeding.hpp"
-#include "mesh/wall_mesher.hpp"
+#include "piston.hpp"
 
 namespace hm::coupling {
 namespace {
 
-using ldd::Vec;
-constexpr double H = 0.1, L = 0.2;
-
-struct Piston {
-  std::unique_ptr<ldd::FlowSolver<2>> flow;
-  std::vector<FlexibleBody<2>> bodies;
-};
-
-Piston piston(double dx) {
-  mesh::WallOptions o;
-  o.dim = 2;
-  o.size = 4 * dx;
-  o.faces = {"xmin", "ymin"};
-  const auto tank =
-      mesh::mesh_rectangle_walls({Eigen::Vector2d::Zero(), Eigen::Vector2d(L + 0.05, 2 * H)}, o);
-  const int segments = static_cast<int>(std::ceil(1.5 * H / (2 * dx)));
-  mesh::SurfaceMesh wall;
-  wall.dim = 2;
-  wall.vertices.resize(segments + 1, 2);
-  wall.cells.resize(segments, 2);
-  for (int k = 0; k <= segments; ++k) wall.vertices.row(k) << L, 1.5 * H * k / segments;
-  for (int k = 0; k < segments; ++k) wall.cells.row(k) << k, k + 1;
-  std::vector<ldd::WallMesh<2>> walls;
-  walls.emplace_back(tank, "tank");
-  walls.emplace_back(wall, "piston");
-  walls.back().set_releases_tension(false);
-  const double added = 0.5428 * 1000 * H * H, mass = added / 10;  // m_a of a long layer [kg/m]
-  ModalSurface<2> modes;
-  for (int k = 0; k <= segments; ++k) modes.x0.push_back(wall.vertices.row(k).transpose());
-  modes.shapes = Eigen::MatrixXd::Zero(2 * (segments + 1), 1);
-  for (int k = 0; k <= segments; ++k) modes.shapes(2 * k, 0) = 1 / std::sqrt(mass);
-  modes.omega = Eigen::VectorXd::Constant(1, 2 * std::numbers::pi * 10 * std::sqrt(11.0));
-  modes.zeta = Eigen::VectorXd::Zero(1);
-  ldd::FlowOptions<2> fo;
-  fo.dx = dx;
-  fo.gravity = Vec<2>(0, -9.81);
-  const auto x = ldd::seed_box<2>({Vec<2>::Zero(), Vec<2>(L, H)}, dx, walls);
-  Piston p;
-  p.flow = std::make_unique<ldd::FlowSolver<2>>(std::move(walls), x, std::span<const Vec<2>>{}, fo);
-  p.bodies.emplace_back("piston", std::move(modes), 1, CouplingOptions{}, p.flow->walls()[1]);
-  return p;
-}
-
 void BM_StrongCoupling(benchmark::State& state) {
   omp_set_num_threads(static_cast<int>(state.range(0)));
-  Piston p = piston(H / 80);
+  test::Piston p = test::piston(test::H / 80, 10.0, 10.0, CouplingScheme::strong);
+  p.flow->walls()[1].set_releases_tension(false);
   p.bodies[0].start(*p.flow);
   std::vector<CouplingMonitor> monitors;
   const auto step = [&] {
