@@ -133,6 +133,10 @@ void FlexibleBody<D>::start(ldd::FlowSolver<D>& flow) {
   const Eigen::Index m = modes_.modes();
   y_ = v_ = Eigen::VectorXd::Zero(m);
   const Eigen::VectorXd hydro = modal_force(flow);
+  if (options_.static_start) {
+    for (Eigen::Index i = 0; i < m; ++i)
+      y_[i] = modes_.omega[i] > 0.0 ? hydro[i] / (modes_.omega[i] * modes_.omega[i]) : 0.0;
+  }
   if (options_.scheme == CouplingScheme::strong) {
     measure_added_mass(flow, flow.stable_dt(0.0).first);
     initial_added_mass_ = added_mass_;

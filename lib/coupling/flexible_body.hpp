@@ -59,6 +59,10 @@ struct CouplingOptions {
   int max_iterations = 20;        ///< PPE solves per step at most (strong)
   long added_mass_interval = 20;  ///< steps between added-mass measurements (strong)
   double load_scale = 1.0;        ///< s: 2-D, the structure's thickness [m]; 3-D 1
+  /// Start from the static solution under the fluid's load at rest, y = F(0)/ω² (ẏ = 0), as an
+  /// experiment that fills the tank with the structure in place does (spec §4.3), instead of
+  /// from the undeformed shape with the load applied suddenly.
+  bool static_start = false;
 };
 
 /// What the coupling did in one step.
@@ -122,6 +126,8 @@ class FlexibleBody {
   /// Sets the state at the flow's start: y = v = 0 and the load of the fluid at rest; with the
   /// strong scheme the load and acceleration are made consistent with the fluid's reaction
   /// (F(0⁺) = F_h − M̂ ÿ(0), spec §3.5 item 3: starting from F_h kicks the body at its dry rate).
+  /// With static_start: y = F_h/ω² for every elastic mode, ÿ = 0 (the fluid points stay where
+  /// they were seeded; the deformed wall pushes out those it overlaps at the first step).
   void start(ldd::FlowSolver<D>& flow);
 
   BodyState state() const { return {y_, v_, a_, F_, added_mass_, initial_added_mass_}; }

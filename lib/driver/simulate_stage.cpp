@@ -163,6 +163,7 @@ coupling::CouplingOptions coupling_options(const io::Scene& scene) {
   o.max_iterations = static_cast<int>(c.number("max_iterations"));
   o.added_mass_interval = static_cast<long>(c.number("added_mass_interval"));
   o.load_scale = scene.dimension() == 2 ? scene.number("structure.thickness") : 1.0;
+  o.static_start = scene.boolean("structure.static_start");
   return o;
 }
 

@@ -377,8 +377,9 @@ const std::vector<KeyDecl>& scene_keys() {
               "mode)",
               simulate_stage),
       boolean("structure.static_start", "false",
-              "structure-only runs: start every mode at its static solution y = F(0)/ω² "
-              "instead of at rest",
+              "start every mode at its static solution y = F(0)/ω² instead of at rest: under "
+              "the [[load]]s at t = 0 (structure-only runs) or the fluid's load at rest "
+              "(coupled runs: a tank filled with the structure in place)",
               simulate_stage),
 
       // [modes]
