@@ -1,5 +1,5 @@
 #pragma once
-// fsi-simulate: scene + mesh.h5 (+ mapped.h5, issue 7) → results.h5 (hydromodal.results), with
+// fsi-simulate: scene + mesh.h5 (+ mapped.h5) → results.h5 (hydromodal.results), with
 // probes.csv and snapshots/ (flow_*.h5 + flow.xdmf for ParaView) next to it.
 // Rigid walls are fixed or in prescribed motion; a [structure] in a flow scene is a flexible body
 // (coupling/flexible_body.hpp) on the mapped modes.
