@@ -1,6 +1,7 @@
 #include "coupling/flexible_body.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 
@@ -57,7 +58,7 @@ double FlexibleBody<D>::max_speed() const {
   double speed = 0.0;
   for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(modes_.x0.size()); ++k)
     speed = std::max(speed, field(v_, k).norm());
-  return speed;
+  return speed + (carrier_ ? carrier_->state(time_).velocity.norm() : 0.0);
 }
 
 template <int D>
@@ -69,16 +70,53 @@ double FlexibleBody<D>::stretch() const {
 }
 
 template <int D>
+void FlexibleBody<D>::set_carrier(motion::RigidMotion carrier) {
+  carrier_ = std::move(carrier);
+}
+
+namespace {
+
+/// The carrier's translation, velocity and acceleration at t (zero without one); InputError when
+/// it rotates (the rotating frame's terms are not implemented for flexible bodies).
+template <int D>
+std::array<ldd::Vec<D>, 3> carrier_translation(const std::optional<motion::RigidMotion>& carrier,
+                                               double t, const std::string& body) {
+  std::array<ldd::Vec<D>, 3> out{ldd::Vec<D>::Zero(), ldd::Vec<D>::Zero(), ldd::Vec<D>::Zero()};
+  if (!carrier) return out;
+  const motion::RigidState s = carrier->state(t);
+  if (!s.rotation.isIdentity(1e-14) || s.omega.norm() > 0.0 || s.alpha.norm() > 0.0)
+    input_error(
+        "flexible body '{}': its tank rotates at t = {} s; a flexible body moves with a tank "
+        "in translation only in this version",
+        body, t);
+  out[0] = s.translation.head<D>();
+  out[1] = s.velocity.head<D>();
+  out[2] = s.acceleration.head<D>();
+  return out;
+}
+
+}  // namespace
+
+template <int D>
+Eigen::VectorXd FlexibleBody<D>::inertial_force(double t) const {
+  const Eigen::Index m = modes_.modes();
+  if (modes_.participation.size() == 0) return Eigen::VectorXd::Zero(m);
+  const auto [X, V, A] = carrier_translation<D>(carrier_, t, name_);
+  return modes_.participation * (gravity_ - A);
+}
+
+template <int D>
 void FlexibleBody<D>::place(ldd::WallMesh<D>& wall, const Eigen::VectorXd& y,
-                            const Eigen::VectorXd& v, const Eigen::VectorXd& a) const {
+                            const Eigen::VectorXd& v, const Eigen::VectorXd& a, double t) const {
+  const auto [X, V, A] = carrier_translation<D>(carrier_, t, name_);
   const std::size_t n = modes_.x0.size();
   std::vector<ldd::Vec<D>> x(n), xv(n), xa(n);
   const Eigen::VectorXd u = modes_.shapes * y, uv = modes_.shapes * v, ua = modes_.shapes * a;
   for (std::size_t k = 0; k < n; ++k) {
     const auto r = static_cast<Eigen::Index>(D * k);
-    x[k] = modes_.x0[k] + u.segment<D>(r);
-    xv[k] = uv.segment<D>(r);
-    xa[k] = ua.segment<D>(r);
+    x[k] = X + modes_.x0[k] + u.segment<D>(r);
+    xv[k] = V + uv.segment<D>(r);
+    xa[k] = A + ua.segment<D>(r);
   }
   wall.move(x, xv, xa);
 }
@@ -132,7 +170,9 @@ template <int D>
 void FlexibleBody<D>::start(ldd::FlowSolver<D>& flow) {
   const Eigen::Index m = modes_.modes();
   y_ = v_ = Eigen::VectorXd::Zero(m);
-  const Eigen::VectorXd hydro = modal_force(flow);
+  time_ = flow.time();
+  gravity_ = flow.options().gravity;
+  const Eigen::VectorXd hydro = modal_force(flow) + inertial_force(time_);
   if (options_.static_start) {
     for (Eigen::Index i = 0; i < m; ++i)
       y_[i] = modes_.omega[i] > 0.0 ? hydro[i] / (modes_.omega[i] * modes_.omega[i]) : 0.0;
@@ -149,7 +189,7 @@ void FlexibleBody<D>::start(ldd::FlowSolver<D>& flow) {
   }
   a_ = F_ - (2.0 * modes_.zeta.cwiseProduct(modes_.omega)).cwiseProduct(v_) -
        modes_.omega.array().square().matrix().cwiseProduct(y_);
-  place(flow.walls()[static_cast<std::size_t>(wall_)], y_, v_, a_);
+  place(flow.walls()[static_cast<std::size_t>(wall_)], y_, v_, a_, time_);
 }
 
 template <int D>
@@ -158,6 +198,7 @@ void FlexibleBody<D>::restore(const BodyState& state) {
   if (state.y.size() != m || state.v.size() != m || state.a.size() != m || state.F.size() != m)
     input_error("flexible body '{}': the checkpoint holds {} modes, the mode set {}", name_,
                 state.y.size(), m);
+  time_ = state.time;
   y_ = state.y;
   v_ = state.v;
   a_ = state.a;
@@ -196,7 +237,7 @@ void FlexibleBody<D>::predict(ldd::WallMesh<D>& wall, double dt) {
   y_step_ = y_free_ + d_y.cwiseProduct(load);
   const Eigen::VectorXd v = v_free_ + d_v.cwiseProduct(load);
   a_step_ = kappa_.cwiseProduct(load) + rest_;
-  place(wall, y_step_, v, a_step_);
+  place(wall, y_step_, v, a_step_, time_ + dt);
   iterations_ = 0;
   if (added_mass_.size() > 0) jacobian_ = -added_mass_;
 }
@@ -238,7 +279,7 @@ double FlexibleBody<D>::iterate(ldd::WallMesh<D>& wall, const Eigen::VectorXd& m
   a_step_ += delta;
   // The wall's velocity follows its mean acceleration exactly (ẏ^{n+1} = ẏ^n + Δt·ā), so the
   // wall nodes' u* stays U^n + Δt·g whatever the iterate (see predict).
-  place(wall, y_step_, v_ + coefficient_dt_ * a_step_, a_step_);
+  place(wall, y_step_, v_ + coefficient_dt_ * a_step_, a_step_, time_ + coefficient_dt_);
   return relative;
 }
 
@@ -251,6 +292,7 @@ void FlexibleBody<D>::correct(const Eigen::VectorXd& measured) {
     v_[i] = v_free_[i] + c.d_v * measured[i];
   }
   F_ = measured;
+  time_ += coefficient_dt_;
   a_ = F_ - (2.0 * modes_.zeta.cwiseProduct(modes_.omega)).cwiseProduct(v_) -
        modes_.omega.array().square().matrix().cwiseProduct(y_);
 }
@@ -268,7 +310,10 @@ ldd::StepMonitor coupled_step(ldd::FlowSolver<D>& flow, std::span<FlexibleBody<D
     return flow.walls()[static_cast<std::size_t>(b.wall())];
   };
   auto t = Clock::now();
-  for (auto& body : bodies) body.predict(wall_of(body), dt);
+  for (auto& body : bodies) {
+    body.set_gravity(flow.options().gravity);
+    body.predict(wall_of(body), dt);
+  }
   own += since(t);
   flow.begin_step(dt);
   t = Clock::now();
@@ -293,7 +338,7 @@ ldd::StepMonitor coupled_step(ldd::FlowSolver<D>& flow, std::span<FlexibleBody<D
     t = Clock::now();
     bool converged = true;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-      measured[b] = bodies[b].modal_force(flow);
+      measured[b] = bodies[b].modal_force(flow) + bodies[b].inertial_force(flow.time() + dt);
       const Eigen::VectorXd seen = bodies[b].fluid_acceleration();
       const double residual = bodies[b].iterate(wall_of(bodies[b]), measured[b]);
       coupling[b].iterations = iteration;

@@ -35,8 +35,11 @@
 
 #include <Eigen/Core>
 
+#include <optional>
+
 #include "ldd/flow.hpp"
 #include "modal/cfpi.hpp"
+#include "motion/rigid_motion.hpp"
 
 namespace hm::coupling {
 
@@ -47,6 +50,9 @@ struct ModalSurface {
   Eigen::MatrixXd shapes;       ///< (n_vertices·D) × n_modes, DOF = D·vertex + c [1/√kg]
   Eigen::VectorXd omega;        ///< [rad/s]
   Eigen::VectorXd zeta;         ///< [1]
+  /// Γ = ΦᵀM T, n_modes × D [√kg]: the modal force of a uniform acceleration (gravity, the
+  /// tank's); empty = none (the body's own weight and base excitation are then left out).
+  Eigen::MatrixXd participation;
   Eigen::Index modes() const { return shapes.cols(); }
 };
 
@@ -81,6 +87,7 @@ struct CouplingMonitor {
 
 /// What a flexible body carries between steps (a checkpoint).
 struct BodyState {
+  double time = 0.0;  ///< [s]
   Eigen::VectorXd y, v, a, F;
   Eigen::MatrixXd added_mass, initial_added_mass;  ///< empty for the explicit scheme
 };
@@ -130,15 +137,26 @@ class FlexibleBody {
   /// they were seeded; the deformed wall pushes out those it overlaps at the first step).
   void start(ldd::FlowSolver<D>& flow);
 
-  BodyState state() const { return {y_, v_, a_, F_, added_mass_, initial_added_mass_}; }
+  BodyState state() const { return {time_, y_, v_, a_, F_, added_mass_, initial_added_mass_}; }
+
+  /// Clamps the body to a tank in rigid translation (sway or a table without rotation): its
+  /// surface moves with the tank, x = X(t) + X0 + ΣΦy, the modes stay relative to the tank, and
+  /// the modal load gains the base excitation −Γ·Ẍ (spec §4.3). Call before start().
+  void set_carrier(motion::RigidMotion carrier);
+  /// The modal force of the body's own weight and of the tank's acceleration at time t,
+  /// Γ(g − Ẍ(t)) [N/√kg] (zero without participation factors).
+  Eigen::VectorXd inertial_force(double t) const;
+  /// The gravity of the flow [m/s²] (taken at start() and by coupled_step).
+  void set_gravity(const ldd::Vec<D>& g) { gravity_ = g; }
   /// Continues from `state` instead of start(); InputError when the mode count differs.
   void restore(const BodyState& state);
 
-  /// Moves `wall` to the modal state (y, v, a) (positions, velocities, accelerations).
+  /// Moves `wall` to the modal state (y, v, a) at time t (positions, velocities,
+  /// accelerations; with a carrier, its rigid motion at t added).
   void place(ldd::WallMesh<D>& wall, const Eigen::VectorXd& y, const Eigen::VectorXd& v,
-             const Eigen::VectorXd& a) const;
+             const Eigen::VectorXd& a, double t) const;
 
-  // The steps of coupled_step, per body.
+  // The steps of coupled_step, per body; predict places the wall at t + dt.
   void predict(ldd::WallMesh<D>& wall, double dt);
   /// After a PPE solve: the new load estimate; places the wall's velocity and acceleration for
   /// the next solve (positions unchanged) and returns the interface residual.
@@ -151,6 +169,9 @@ class FlexibleBody {
 
   std::string name_;
   ModalSurface<D> modes_;
+  std::optional<motion::RigidMotion> carrier_;
+  ldd::Vec<D> gravity_ = ldd::Vec<D>::Zero();  ///< [m/s²], from the flow at start()
+  double time_ = 0.0;                          ///< of the state y_, v_ [s]
   int wall_;
   CouplingOptions options_;
   double size_ = 0.0;

@@ -348,12 +348,11 @@ std::vector<coupling::BodyState> read_bodies(const io::ArtefactReader& r, std::s
       strong ? r.read_values("/bodies/added_mass_initial") : std::vector<double>{};
   for (std::size_t b = 0; b < count; ++b) {
     const auto row = static_cast<Eigen::Index>(b);
-    bodies[b] = {y.row(row).transpose(),
-                 v.row(row).transpose(),
-                 a.row(row).transpose(),
-                 F.row(row).transpose(),
-                 {},
-                 {}};
+    bodies[b].time = number(r, "time");
+    bodies[b].y = y.row(row).transpose();
+    bodies[b].v = v.row(row).transpose();
+    bodies[b].a = a.row(row).transpose();
+    bodies[b].F = F.row(row).transpose();
     if (!strong) continue;
     bodies[b].added_mass = Eigen::Map<const MatrixRM>(added.data() + b * m * m, m, m);
     bodies[b].initial_added_mass = Eigen::Map<const MatrixRM>(initial.data() + b * m * m, m, m);

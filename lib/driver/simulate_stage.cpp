@@ -151,6 +151,7 @@ MappedBody<D> read_mapped_body(const std::filesystem::path& file) {
   };
   body.modes.omega = vector_of(ds::omega);
   body.modes.zeta = vector_of(ds::damping_ratio);
+  body.modes.participation = r.read_matrix(ds::participation_translation);
   return body;
 }
 
@@ -323,6 +324,15 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     bodies.emplace_back(structure_wall_name, std::move(mapped->modes), setup.structure_wall,
                         coupling_options(scene),
                         solver.walls()[static_cast<std::size_t>(setup.structure_wall)]);
+    if (const std::string host = scene.string("coupling.moves_with"); !host.empty()) {
+      const auto w = static_cast<std::size_t>(
+          std::find(setup.wall_names.begin(), setup.wall_names.end(), host) -
+          setup.wall_names.begin());
+      if (w >= setup.walls.size() || !setup.motions[w].motion)
+        input_error("{} = \"{}\" must name a [[wall]] in motion (walls: {})",
+                    scene.where("coupling.moves_with"), host, fmt::join(setup.wall_names, ", "));
+      bodies.front().set_carrier(*setup.motions[w].motion);
+    }
     spdlog::info("{}: flexible body '{}': {} modes ({} Hz), {} coupling", stage_name,
                  structure_wall_name, bodies.front().modes().modes(),
                  fmt::join(bodies.front().modes().omega / (2 * std::numbers::pi), ", "),

@@ -372,6 +372,11 @@ const std::vector<KeyDecl>& scene_keys() {
               "nonlinearity the sub-iterations converge poorly on (the elastic gate diverged "
               "with it at dx = 5 mm); off, the fluid holds on to the structure",
               simulate_stage),
+      text("coupling.moves_with", "\"\"", {},
+           "name of the [[wall]] (a tank in sway or a translating table motion) the structure is "
+           "clamped to: it moves with it, its modes relative to it, loaded by the base "
+           "excitation −Γ·Ẍ; empty: fixed in space. A rotating tank is not supported yet",
+           simulate_stage),
       integer("coupling.added_mass_interval", "20", 1, 1000000,
               "strong: steps between measurements of the modal added-mass matrix (one PPE per "
               "mode)",

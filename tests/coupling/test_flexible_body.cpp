@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "coupling/run.hpp"
+#include "motion/rigid_motion.hpp"
 #include "piston.hpp"
 
 namespace hm::coupling {
@@ -104,6 +105,60 @@ TEST(FlexibleBody, StaticStartHoldsThePistonAtItsStaticOffset) {
               100 * swing_size / offset);
   EXPECT_GT(offset, 0.0);
   EXPECT_LT(swing_size, 0.1 * offset);  // released from rest it swings by 100 %
+}
+
+// A dry plate hanging from a swaying tank (above the water: no fluid load) on a spring, its mode
+// the rigid translation Φ = e_x/√m (Γ = √m e_x): relative to the tank it obeys
+// ü + ω²u = −Ẍ = Aω_b² sin ω_b t from rest, u = Aω_b²/(ω² − ω_b²) (sin ω_b t − (ω_b/ω) sin ωt).
+TEST(FlexibleBody, BaseExcitationOfABodyOnASwayingTank) {
+  const double dx = 0.01, A = 0.005, period = 1.0, mass = 2.0, omega = 2 * std::numbers::pi * 3;
+  mesh::WallOptions wo;
+  wo.dim = 2;
+  wo.size = 4 * dx;
+  wo.faces = {"xmin", "xmax", "ymin"};
+  const auto tank =
+      mesh::mesh_rectangle_walls({Eigen::Vector2d::Zero(), Eigen::Vector2d(0.4, 0.3)}, wo);
+  mesh::SurfaceMesh plate;
+  plate.dim = 2;
+  plate.vertices.resize(3, 2);
+  plate.vertices << 0.2, 0.15, 0.2, 0.2, 0.2, 0.25;
+  plate.cells.resize(2, 2);
+  plate.cells << 0, 1, 1, 2;
+  std::vector<ldd::WallMesh<2>> walls;
+  walls.emplace_back(tank, "tank");
+  walls.emplace_back(plate, "plate");
+  ldd::FlowOptions<2> fo;
+  fo.dx = dx;
+  fo.gravity = Vec<2>(0, -g);
+  const auto x = ldd::seed_box<2>({Vec<2>::Zero(), Vec<2>(0.4, 0.05)}, dx, walls);
+  ldd::FlowSolver<2> flow(std::move(walls), x, {}, fo);
+  ModalSurface<2> modes;
+  for (int k = 0; k < 3; ++k) modes.x0.push_back(plate.vertices.row(k).transpose());
+  modes.shapes = Eigen::MatrixXd::Zero(6, 1);
+  for (int k = 0; k < 3; ++k) modes.shapes(2 * k, 0) = 1 / std::sqrt(mass);
+  modes.omega = Eigen::VectorXd::Constant(1, omega);
+  modes.zeta = Eigen::VectorXd::Zero(1);
+  modes.participation = Eigen::MatrixXd::Zero(1, 2);
+  modes.participation(0, 0) = std::sqrt(mass);
+  const auto sway = motion::sway_motion(2, Eigen::Vector3d::UnitX(), A, period);
+  std::vector<FlexibleBody<2>> bodies;
+  bodies.emplace_back("plate", std::move(modes), 1, CouplingOptions{}, flow.walls()[1]);
+  bodies[0].set_carrier(sway);
+  std::vector<WallMotion> motions{{tank.vertices, sway}, {plate.vertices, std::nullopt}};
+  const RunResult r = run<2>(flow, motions, {.end = 1.0}, {}, std::span(bodies));
+  ASSERT_EQ(r.status, RunStatus::completed) << r.divergence_report;
+  const double wb = 2 * std::numbers::pi / period;
+  double worst = 0.0, largest = 0.0;
+  for (std::size_t k = 0; k < r.modal[0].time.size(); ++k) {
+    const double t = r.modal[0].time[k];
+    const double exact = A * wb * wb / (omega * omega - wb * wb) *
+                         (std::sin(wb * t) - wb / omega * std::sin(omega * t));
+    worst = std::max(worst, std::abs(r.modal[0].y[k][0] / std::sqrt(mass) - exact));
+    largest = std::max(largest, std::abs(exact));
+  }
+  std::printf("plate on a swaying tank: %zu steps, worst error %.3g of the largest |u| %.3g m\n",
+              r.monitors.size(), worst / largest, largest);
+  EXPECT_LT(worst, 1e-2 * largest);
 }
 
 // The explicit staggered scheme on the light piston: with a linear PPE the modal force flips
