@@ -23,24 +23,15 @@ struct SourceModes {
   io::MatrixRM participation_translation, participation_rotation;
 };
 
-Eigen::VectorXd vector_of(const io::ArtefactReader& r, const std::string& dataset) {
-  const std::vector<double> values = r.read_values(dataset);
-  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
-}
-
 SourceModes read_source_modes(const io::ArtefactReader& r) {
   SourceModes s;
   s.surface.vertices = r.read_matrix(ds::modes_surface_vertices);
   s.surface.dim = static_cast<int>(s.surface.vertices.cols());
   s.surface.cells = r.read_indices(ds::modes_surface_cells);
-  const auto n_modes = static_cast<Eigen::Index>(r.extent("n_modes"));
-  const std::vector<double> stacked = r.read_values(ds::surface_shapes);  // [mode][vertex][c]
-  s.shapes = Eigen::Map<const Eigen::MatrixXd>(
-      stacked.data(),
-      static_cast<Eigen::Index>(stacked.size()) / std::max<Eigen::Index>(n_modes, 1), n_modes);
-  s.frequencies_hz = vector_of(r, ds::frequencies_hz);
-  s.omega = vector_of(r, ds::omega);
-  s.damping_ratio = vector_of(r, ds::damping_ratio);
+  s.shapes = r.read_columns(ds::surface_shapes);  // [mode][vertex][c]
+  s.frequencies_hz = r.read_vector(ds::frequencies_hz);
+  s.omega = r.read_vector(ds::omega);
+  s.damping_ratio = r.read_vector(ds::damping_ratio);
   s.participation_translation = r.read_matrix(ds::participation_translation);
   s.participation_rotation = r.read_matrix(ds::participation_rotation);
   return s;

@@ -135,22 +135,11 @@ MappedBody<D> read_mapped_body(const std::filesystem::path& file) {
   if (body.surface.dim != D)
     input_error("{}: the mapped surface is {}-D, the case is {}-D", file.string(), body.surface.dim,
                 D);
-  const auto n_modes = static_cast<Eigen::Index>(r.extent("n_modes"));
-  const auto n_vertices = body.surface.vertices.rows();
-  const std::vector<double> stacked = r.read_values(ds::mapped_shapes);  // [mode][vertex][c]
-  body.modes.shapes.resize(D * n_vertices, n_modes);
-  for (Eigen::Index m = 0; m < n_modes; ++m)
-    for (Eigen::Index k = 0; k < D * n_vertices; ++k)
-      body.modes.shapes(k, m) = stacked[static_cast<std::size_t>(m * D * n_vertices + k)];
-  for (Eigen::Index v = 0; v < n_vertices; ++v)
+  body.modes.shapes = r.read_columns(ds::mapped_shapes);  // [mode][vertex][c]
+  for (Eigen::Index v = 0; v < body.surface.vertices.rows(); ++v)
     body.modes.x0.push_back(body.surface.vertices.row(v).transpose());
-  const auto vector_of = [&](const char* dataset) {
-    const std::vector<double> values = r.read_values(dataset);
-    return Eigen::VectorXd(
-        Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size())));
-  };
-  body.modes.omega = vector_of(ds::omega);
-  body.modes.zeta = vector_of(ds::damping_ratio);
+  body.modes.omega = r.read_vector(ds::omega);
+  body.modes.zeta = r.read_vector(ds::damping_ratio);
   body.modes.participation = r.read_matrix(ds::participation_translation);
   return body;
 }

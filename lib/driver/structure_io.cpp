@@ -92,27 +92,16 @@ void write_mesh_xdmf(const std::filesystem::path& h5_path, const mesh::Structure
 
 modal::ModeSet read_mode_set(const io::ArtefactReader& reader) {
   namespace ds = io::ds;
-  auto vector_of = [&](const char* dataset) {
-    const std::vector<double> v = reader.read_values(dataset);
-    return Eigen::VectorXd(
-        Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
-  };
   modal::ModeSet m;
-  m.eigenvalues = vector_of(ds::eigenvalues);
-  m.omega = vector_of(ds::omega);
-  m.frequency_hz = vector_of(ds::frequencies_hz);
-  m.damping_ratio = vector_of(ds::damping_ratio);
+  m.eigenvalues = reader.read_vector(ds::eigenvalues);
+  m.omega = reader.read_vector(ds::omega);
+  m.frequency_hz = reader.read_vector(ds::frequencies_hz);
+  m.damping_ratio = reader.read_vector(ds::damping_ratio);
   const io::Dims dims = reader.dims(ds::shapes);  // n_modes × n_nodes × dim
   HM_ASSERT(dims.size() == 3, "{}: {} has rank {}", reader.path().string(), ds::shapes,
             dims.size());
   m.dim = static_cast<int>(dims[2]);
-  const auto modes = static_cast<Eigen::Index>(dims[0]);
-  const auto dofs = static_cast<Eigen::Index>(dims[1] * dims[2]);
-  const std::vector<double> stacked = reader.read_values(ds::shapes);
-  m.shapes.resize(dofs, modes);
-  for (Eigen::Index i = 0; i < modes; ++i)
-    for (Eigen::Index d = 0; d < dofs; ++d)
-      m.shapes(d, i) = stacked[static_cast<std::size_t>(i * dofs + d)];
+  m.shapes = reader.read_columns(ds::shapes);
   return m;
 }
 

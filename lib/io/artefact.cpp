@@ -486,6 +486,17 @@ std::vector<T> read_all(hid_t file, const std::filesystem::path& path, const std
 std::vector<double> ArtefactReader::read_values(const std::string& dataset) const {
   return read_all<double>(file_->get(), path_, dataset, H5T_NATIVE_DOUBLE);
 }
+Eigen::VectorXd ArtefactReader::read_vector(const std::string& dataset) const {
+  const std::vector<double> values = read_values(dataset);
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+Eigen::MatrixXd ArtefactReader::read_columns(const std::string& dataset) const {
+  const Dims d = dims(dataset);
+  const std::vector<double> values = read_values(dataset);
+  const auto columns = static_cast<Eigen::Index>(d.empty() ? 0 : d.front());
+  const Eigen::Index rows = columns > 0 ? static_cast<Eigen::Index>(values.size()) / columns : 0;
+  return Eigen::Map<const Eigen::MatrixXd>(values.data(), rows, columns);
+}
 std::vector<std::int64_t> ArtefactReader::read_index_values(const std::string& dataset) const {
   return read_all<std::int64_t>(file_->get(), path_, dataset, H5T_NATIVE_INT64);
 }

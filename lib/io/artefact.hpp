@@ -98,6 +98,10 @@ class ArtefactReader {
   MatrixRM read_matrix(const std::string& dataset) const;             ///< 1-D read as a column
   IndexMatrixRM read_indices(const std::string& dataset) const;       ///< 1-D read as a column
   std::vector<double> read_values(const std::string& dataset) const;  ///< any rank, flattened
+  Eigen::VectorXd read_vector(const std::string& dataset) const;      ///< any rank, flattened
+  /// A dataset stacked along its first axis ([n, ...], e.g. [mode][vertex][c]) as a matrix with
+  /// one column per leading index, each the flattened rest.
+  Eigen::MatrixXd read_columns(const std::string& dataset) const;
   std::vector<std::int64_t> read_index_values(const std::string& dataset) const;
   Dims dims(const std::string& dataset) const;
   std::optional<std::string> string_attribute(const std::string& name) const;
