@@ -33,35 +33,28 @@ std::vector<std::int64_t> integers(const std::vector<T>& v, F field) {
 }
 
 // The StepMonitor packed as one row of doubles (the order is the checkpoint format).
-constexpr int monitor_fields = 16 + 9;
+constexpr int monitor_fields = 16 + static_cast<int>(ldd::PhaseSeconds::count);
 
 std::vector<double> pack(const ldd::StepMonitor& m) {
-  const auto& s = m.seconds;
-  return {static_cast<double>(m.step),
-          m.time,
-          m.dt,
-          static_cast<double>(m.limit),
-          static_cast<double>(m.ppe_iterations),
-          static_cast<double>(m.ppe_passes),
-          m.ppe_residual,
-          m.ppe_converged ? 1.0 : 0.0,
-          m.max_divergence,
-          m.volume_drift,
-          m.max_speed,
-          static_cast<double>(m.escaped),
-          static_cast<double>(m.fluid),
-          static_cast<double>(m.surface),
-          static_cast<double>(m.isolated),
-          static_cast<double>(m.wall_active),
-          s.advect,
-          s.pbd,
-          s.neighbours,
-          s.operators,
-          s.free_surface,
-          s.predictor,
-          s.ppe_assembly,
-          s.ppe_solve,
-          s.corrector};
+  std::vector<double> row{static_cast<double>(m.step),
+                          m.time,
+                          m.dt,
+                          static_cast<double>(m.limit),
+                          static_cast<double>(m.ppe_iterations),
+                          static_cast<double>(m.ppe_passes),
+                          m.ppe_residual,
+                          m.ppe_converged ? 1.0 : 0.0,
+                          m.max_divergence,
+                          m.volume_drift,
+                          m.max_speed,
+                          static_cast<double>(m.escaped),
+                          static_cast<double>(m.fluid),
+                          static_cast<double>(m.surface),
+                          static_cast<double>(m.isolated),
+                          static_cast<double>(m.wall_active)};
+  const auto seconds = m.seconds.values();
+  row.insert(row.end(), seconds.begin(), seconds.end());
+  return row;
 }
 
 ldd::StepMonitor unpack_monitor(const double* r) {
@@ -82,11 +75,7 @@ ldd::StepMonitor unpack_monitor(const double* r) {
   m.surface = static_cast<ldd::Index>(r[13]);
   m.isolated = static_cast<ldd::Index>(r[14]);
   m.wall_active = static_cast<ldd::Index>(r[15]);
-  auto& s = m.seconds;
-  int column = 16;
-  for (double* field : {&s.advect, &s.pbd, &s.neighbours, &s.operators, &s.free_surface,
-                        &s.predictor, &s.ppe_assembly, &s.ppe_solve, &s.corrector})
-    *field = r[column++];
+  m.seconds = ldd::PhaseSeconds::from_values({r + 16, ldd::PhaseSeconds::count});
   return m;
 }
 
@@ -210,10 +199,8 @@ void write_run(io::ArtefactWriter& w, const coupling::RunResult& r) {
              &coupling(k, coupling_fields * b));
     w.write("/run/coupling", coupling);
   }
-  const auto& s = r.phase_totals;
-  w.write("/run/phase_totals",
-          std::vector<double>{s.advect, s.pbd, s.neighbours, s.operators, s.free_surface,
-                              s.predictor, s.ppe_assembly, s.ppe_solve, s.corrector});
+  const auto phases = r.phase_totals.values();
+  w.write("/run/phase_totals", std::vector<double>(phases.begin(), phases.end()));
   if (!r.probes.time.empty()) {
     MatrixRM values(static_cast<Eigen::Index>(r.probes.rows.size()),
                     static_cast<Eigen::Index>(r.probes.rows.front().size()));
@@ -375,12 +362,7 @@ coupling::RunResult read_run(const io::ArtefactReader& r, std::size_t bodies) {
             unpack_coupling(&c(k, coupling_fields * static_cast<Eigen::Index>(b))));
     }
   }
-  const std::vector<double> t = r.read_values("/run/phase_totals");
-  auto& s = run.phase_totals;
-  std::size_t k = 0;
-  for (double* field : {&s.advect, &s.pbd, &s.neighbours, &s.operators, &s.free_surface,
-                        &s.predictor, &s.ppe_assembly, &s.ppe_solve, &s.corrector})
-    *field = t.at(k++);
+  run.phase_totals = ldd::PhaseSeconds::from_values(r.read_values("/run/phase_totals"));
   if (r.has("/run/probe_time")) {
     run.probes.time = r.read_values("/run/probe_time");
     MatrixRM values;

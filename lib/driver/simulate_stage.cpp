@@ -76,12 +76,9 @@ void write_monitors(io::ArtefactWriter& w, const std::vector<ldd::StepMonitor>& 
 }
 
 void write_phase_totals(io::ArtefactWriter& w, const ldd::PhaseSeconds& s) {
-  const std::vector<double> values{s.advect,       s.pbd,          s.neighbours,
-                                   s.operators,    s.free_surface, s.predictor,
-                                   s.ppe_assembly, s.ppe_solve,    s.corrector};
-  w.write(ds::run_phase_seconds, values);
-  w.set_attribute(ra::phase_names, std::string("advect,pbd,neighbours,operators,free_surface,"
-                                               "predictor,ppe_assembly,ppe_solve,corrector"));
+  const auto values = s.values();
+  w.write(ds::run_phase_seconds, std::vector<double>(values.begin(), values.end()));
+  w.set_attribute(ra::phase_names, std::string(ldd::PhaseSeconds::names));
 }
 
 void write_probes(io::ArtefactWriter& w, const coupling::ProbeSeries& series,

@@ -79,17 +79,21 @@ double bounded_step(double dt, double remaining) {
   return dt;
 }
 
+PhaseSeconds PhaseSeconds::from_values(std::span<const double> v) {
+  HM_ASSERT(v.size() >= count, "{} phase values for {} phases", v.size(), count);
+  return {v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8]};
+}
+
+double PhaseSeconds::total() const {
+  const auto v = values();
+  return std::accumulate(v.begin(), v.end(), 0.0);
+}
+
 PhaseSeconds& PhaseSeconds::operator+=(const PhaseSeconds& o) {
-  advect += o.advect;
-  pbd += o.pbd;
-  neighbours += o.neighbours;
-  operators += o.operators;
-  free_surface += o.free_surface;
-  predictor += o.predictor;
-  ppe_assembly += o.ppe_assembly;
-  ppe_solve += o.ppe_solve;
-  corrector += o.corrector;
-  return *this;
+  const auto a = values(), b = o.values();
+  std::array<double, count> sum;
+  for (std::size_t k = 0; k < count; ++k) sum[k] = a[k] + b[k];
+  return *this = from_values(sum);
 }
 
 std::string DivergenceReport::text() const {

@@ -106,10 +106,17 @@ struct FlowOptions {
 struct PhaseSeconds {
   double advect = 0, pbd = 0, neighbours = 0, operators = 0, free_surface = 0, predictor = 0,
          ppe_assembly = 0, ppe_solve = 0, corrector = 0;
-  double total() const {
-    return advect + pbd + neighbours + operators + free_surface + predictor + ppe_assembly +
-           ppe_solve + corrector;
+  /// The phases in this order, comma-separated (results.h5 phase_names).
+  static constexpr const char* names =
+      "advect,pbd,neighbours,operators,free_surface,predictor,ppe_assembly,ppe_solve,corrector";
+  static constexpr std::size_t count = 9;
+  std::array<double, count> values() const {
+    return {advect,    pbd,          neighbours, operators, free_surface,
+            predictor, ppe_assembly, ppe_solve,  corrector};
   }
+  /// From values() (at least count entries).
+  static PhaseSeconds from_values(std::span<const double> v);
+  double total() const;
   PhaseSeconds& operator+=(const PhaseSeconds& o);
 };
 
