@@ -9,14 +9,6 @@
 namespace hm::coupling {
 namespace {
 
-template <int D>
-std::vector<ldd::Vec<D>> rows_of(const motion::Vertices& m) {
-  std::vector<ldd::Vec<D>> out(static_cast<std::size_t>(m.rows()));
-  for (Eigen::Index i = 0; i < m.rows(); ++i)
-    out[static_cast<std::size_t>(i)] = m.row(i).transpose();
-  return out;
-}
-
 /// Round-off allowance when a step aimed at an output time lands next to it [s].
 double time_tolerance(double t) {
   return 1e-12 * std::max(1.0, std::abs(t));
@@ -61,7 +53,7 @@ void place_walls(std::span<ldd::WallMesh<D>> walls, std::span<const WallMotion> 
               walls[w].name(), motions[w].x0.rows(), motions[w].x0.cols(), D,
               walls[w].vertices().size());
     const motion::VertexKinematics k = motions[w].motion->kinematics(t, motions[w].x0);
-    const auto x = rows_of<D>(k.x), v = rows_of<D>(k.v), a = rows_of<D>(k.a);
+    const auto x = ldd::points_of<D>(k.x), v = ldd::points_of<D>(k.v), a = ldd::points_of<D>(k.a);
     walls[w].move(x, v, a);
   }
 }

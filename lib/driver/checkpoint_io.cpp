@@ -10,19 +10,8 @@ namespace {
 using io::Dims;
 using io::MatrixRM;
 
-template <int D>
-MatrixRM rows_of(const std::vector<ldd::Vec<D>>& v) {
-  MatrixRM m(static_cast<Eigen::Index>(v.size()), D);
-  for (std::size_t k = 0; k < v.size(); ++k) m.row(static_cast<Eigen::Index>(k)) = v[k].transpose();
-  return m;
-}
-
-template <int D>
-std::vector<ldd::Vec<D>> vecs_of(const MatrixRM& m) {
-  std::vector<ldd::Vec<D>> v(static_cast<std::size_t>(m.rows()));
-  for (Eigen::Index k = 0; k < m.rows(); ++k) v[static_cast<std::size_t>(k)] = m.row(k).transpose();
-  return v;
-}
+using ldd::points_of;
+using ldd::rows_of;
 
 template <typename T, typename F>
 std::vector<std::int64_t> integers(const std::vector<T>& v, F field) {
@@ -274,19 +263,19 @@ template <int D>
 ldd::FlowState<D> read_flow(const io::ArtefactReader& r) {
   ldd::FlowState<D> s;
   auto& p = s.points;
-  p.position = vecs_of<D>(r.read_matrix("/points/position"));
-  p.velocity = vecs_of<D>(r.read_matrix("/points/velocity"));
+  p.position = points_of<D>(r.read_matrix("/points/position"));
+  p.velocity = points_of<D>(r.read_matrix("/points/velocity"));
   p.pressure = r.read_values("/points/pressure");
   for (auto k : r.read_index_values("/points/kind"))
     p.kind.push_back(static_cast<ldd::PointKind>(k));
   for (auto t : r.read_index_values("/points/type"))
     p.type.push_back(static_cast<ldd::PointType>(t));
-  p.wall_normal = vecs_of<D>(r.read_matrix("/points/wall_normal"));
-  p.wall_velocity = vecs_of<D>(r.read_matrix("/points/wall_velocity"));
-  p.wall_acceleration = vecs_of<D>(r.read_matrix("/points/wall_acceleration"));
+  p.wall_normal = points_of<D>(r.read_matrix("/points/wall_normal"));
+  p.wall_velocity = points_of<D>(r.read_matrix("/points/wall_velocity"));
+  p.wall_acceleration = points_of<D>(r.read_matrix("/points/wall_acceleration"));
   const auto body = r.read_index_values("/points/host_body");
   const auto element = r.read_index_values("/points/host_element");
-  const auto bary = vecs_of<D>(r.read_matrix("/points/host_barycentric"));
+  const auto bary = points_of<D>(r.read_matrix("/points/host_barycentric"));
   for (std::size_t k = 0; k < body.size(); ++k)
     p.host.push_back({static_cast<int>(body[k]), static_cast<ldd::Index>(element[k]), bary[k]});
   const std::vector<double> gradient = r.read_values("/points/velocity_gradient");
@@ -303,8 +292,9 @@ ldd::FlowState<D> read_flow(const io::ArtefactReader& r) {
     s.neighbours.indices.push_back(static_cast<ldd::Index>(i));
   s.neighbours.radius = number(r, "neighbour_radius");
   const auto offsets = r.read_index_values("/walls/offsets");
-  const auto x = vecs_of<D>(r.read_matrix("/walls/x")), v = vecs_of<D>(r.read_matrix("/walls/v")),
-             a = vecs_of<D>(r.read_matrix("/walls/a"));
+  const auto x = points_of<D>(r.read_matrix("/walls/x")),
+             v = points_of<D>(r.read_matrix("/walls/v")),
+             a = points_of<D>(r.read_matrix("/walls/a"));
   for (std::size_t w = 0; w + 1 < offsets.size(); ++w) {
     const auto from = x.begin() + offsets[w], to = x.begin() + offsets[w + 1];
     s.wall_x.emplace_back(from, to);

@@ -3,6 +3,7 @@
 // 3-D from one code base: the dimension D is a template parameter, instantiated for 2 and 3 in
 // the .cpp files. Lengths in metres, velocities in m/s, pressure in Pa (gauge), density kg/m³.
 #include <cstdint>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -15,6 +16,28 @@ using Mat = Eigen::Matrix<double, D, D>;
 
 /// Index of a point (a run holds fewer than 2³¹ points).
 using Index = std::int32_t;
+
+/// n × D coordinates, one point a row (the layout of mesh and motion vertex arrays and of
+/// artefact matrices).
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+/// The rows of an n × D matrix as points.
+template <int D>
+std::vector<Vec<D>> points_of(const RowMatrix& rows) {
+  std::vector<Vec<D>> out(static_cast<std::size_t>(rows.rows()));
+  for (Eigen::Index i = 0; i < rows.rows(); ++i)
+    out[static_cast<std::size_t>(i)] = rows.row(i).transpose();
+  return out;
+}
+
+/// Points as the rows of an n × D matrix.
+template <int D>
+RowMatrix rows_of(const std::vector<Vec<D>>& points) {
+  RowMatrix out(static_cast<Eigen::Index>(points.size()), D);
+  for (std::size_t i = 0; i < points.size(); ++i)
+    out.row(static_cast<Eigen::Index>(i)) = points[i].transpose();
+  return out;
+}
 
 /// Weight of eqs. (6)–(9): Wendland C2, W(q) = (1 − q)⁴(1 + 4q) for q = r/h < 1, else 0.
 /// The operators are invariant to a scaling of W, so it is not normalised.
