@@ -167,6 +167,12 @@ void FlexibleBody<D>::measure_added_mass(ldd::FlowSolver<D>& flow, double dt) {
 }
 
 template <int D>
+Eigen::VectorXd FlexibleBody<D>::modal_acceleration() const {
+  const Eigen::ArrayXd w = modes_.omega.array();
+  return (F_.array() - 2.0 * modes_.zeta.array() * w * v_.array() - w * w * y_.array()).matrix();
+}
+
+template <int D>
 void FlexibleBody<D>::start(ldd::FlowSolver<D>& flow) {
   const Eigen::Index m = modes_.modes();
   y_ = v_ = Eigen::VectorXd::Zero(m);
@@ -187,8 +193,7 @@ void FlexibleBody<D>::start(ldd::FlowSolver<D>& flow) {
   } else {
     F_ = hydro;
   }
-  a_ = F_ - (2.0 * modes_.zeta.cwiseProduct(modes_.omega)).cwiseProduct(v_) -
-       modes_.omega.array().square().matrix().cwiseProduct(y_);
+  a_ = modal_acceleration();
   place(flow.walls()[static_cast<std::size_t>(wall_)], y_, v_, a_, time_);
 }
 
@@ -228,15 +233,12 @@ void FlexibleBody<D>::predict(ldd::WallMesh<D>& wall, double dt) {
     kappa_[i] = c.d_v / dt;
     rest_[i] = (v_free_[i] - v_[i]) / dt;
   }
-  const Eigen::VectorXd& load = F_;  // F_p = F^n
-  Eigen::VectorXd d_y(m), d_v(m);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    d_y[i] = coefficients_[static_cast<std::size_t>(i)].d_y;
-    d_v[i] = coefficients_[static_cast<std::size_t>(i)].d_v;
-  }
-  y_step_ = y_free_ + d_y.cwiseProduct(load);
-  const Eigen::VectorXd v = v_free_ + d_v.cwiseProduct(load);
-  a_step_ = kappa_.cwiseProduct(load) + rest_;
+  // The predictor F_p = F^n.
+  y_step_.resize(m);
+  for (Eigen::Index i = 0; i < m; ++i)
+    y_step_[i] = y_free_[i] + coefficients_[static_cast<std::size_t>(i)].d_y * F_[i];
+  a_step_ = kappa_.cwiseProduct(F_) + rest_;
+  const Eigen::VectorXd v = v_ + dt * a_step_;  // = v_free + d_v·F_p
   place(wall, y_step_, v, a_step_, time_ + dt);
   iterations_ = 0;
   if (added_mass_.size() > 0) jacobian_ = -added_mass_;
@@ -293,8 +295,7 @@ void FlexibleBody<D>::correct(const Eigen::VectorXd& measured) {
   }
   F_ = measured;
   time_ += coefficient_dt_;
-  a_ = F_ - (2.0 * modes_.zeta.cwiseProduct(modes_.omega)).cwiseProduct(v_) -
-       modes_.omega.array().square().matrix().cwiseProduct(y_);
+  a_ = modal_acceleration();
 }
 
 template <int D>

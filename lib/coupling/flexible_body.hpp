@@ -166,6 +166,8 @@ class FlexibleBody {
  private:
   Eigen::VectorXd field(const Eigen::VectorXd& q, Eigen::Index vertex) const;
   void update_coefficients(double dt);
+  /// ÿ = F − 2ζωẏ − ω²y of the current state.
+  Eigen::VectorXd modal_acceleration() const;
 
   std::string name_;
   ModalSurface<D> modes_;
