@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../common/scratch.hpp"
 #include "core/errors.hpp"
 #include "driver/map_stage.hpp"
 #include "driver/mesh_stage.hpp"
@@ -20,13 +21,7 @@ using namespace hm;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("hm_chain_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using hm::test::fresh_dir;
 
 io::Scene write_scene(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;

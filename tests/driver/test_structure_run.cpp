@@ -11,6 +11,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "../common/scratch.hpp"
 #include "core/errors.hpp"
 #include "coupling/structure_run.hpp"
 #include "driver/mesh_stage.hpp"
@@ -25,20 +26,8 @@ using namespace hm;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("hm_structure_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using hm::test::fresh_dir;
+using hm::test::read_text;
 
 /// The cantilever smoke scene with `replace` substituted for `find` (or unchanged).
 io::Scene cantilever(const fs::path& dir, const std::string& find = "",

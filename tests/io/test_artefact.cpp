@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../common/scratch.hpp"
 #include "core/errors.hpp"
 #include "io/artefact.hpp"
 #include "io/hash.hpp"
@@ -16,6 +17,8 @@ using namespace hm::io;
 
 namespace {
 
+using hm::test::fresh_dir;
+
 SchemaSpec test_schema(int version = 1) {
   return {"hydromodal.test",
           version,
@@ -23,14 +26,6 @@ SchemaSpec test_schema(int version = 1) {
           {{"/values/x", DType::f64, {"n", "dim"}, "m", "coordinates"},
            {"/values/ids", DType::i64, {"n"}, "", "indices"},
            {"/groups/*", DType::i64, {"*"}, "", "named groups", false}}};
-}
-
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("hm_test_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
 }
 
 void write_text(const fs::path& path, const std::string& text) {

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "../common/scratch.hpp"
 #include "core/errors.hpp"
 #include "io/probe_csv.hpp"
 
@@ -15,20 +16,8 @@ using namespace hm::io;
 
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("hm_test_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using hm::test::fresh_dir;
+using hm::test::read_text;
 
 void write_text(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "../common/scratch.hpp"
 #include "core/errors.hpp"
 #include "ldd/snapshots.hpp"
 #include "tank.hpp"
@@ -17,19 +18,8 @@ namespace fs = std::filesystem;
 namespace hm::ldd {
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("hm_test_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  return dir;
-}
-
-std::string read_text(const fs::path& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using hm::test::fresh_dir;
+using hm::test::read_text;
 
 std::size_t occurrences(const std::string& text, const std::string& what) {
   std::size_t n = 0;

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../common/scratch.hpp"
 #include "core/errors.hpp"
 #include "driver/mesh_stage.hpp"
 #include "driver/wall_io.hpp"
@@ -21,13 +22,7 @@ namespace fs = std::filesystem;
 namespace hm::ldd {
 namespace {
 
-fs::path fresh_dir(const std::string& name) {
-  const fs::path dir =
-      fs::temp_directory_path() / ("hm_ldd_" + name + "_" + std::to_string(getpid()));
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
-}
+using hm::test::fresh_dir;
 
 // A small clamped gate (the scene needs a structure) and a closed 0.5 × 0.4 m tank.
 const char* scene_2d = R"([case]
