@@ -42,11 +42,12 @@ std::vector<io::InputRecord> provenance_inputs(const io::Scene& scene, const Sim
   return records;
 }
 
-template <typename T, typename F>
-std::vector<T> column(const std::vector<ldd::StepMonitor>& monitors, F field) {
+/// One field of every per-step record, as a dataset column.
+template <typename T, typename S, typename F>
+std::vector<T> column(const std::vector<S>& steps, F field) {
   std::vector<T> out;
-  out.reserve(monitors.size());
-  for (const auto& m : monitors) out.push_back(static_cast<T>(field(m)));
+  out.reserve(steps.size());
+  for (const auto& s : steps) out.push_back(static_cast<T>(field(s)));
   return out;
 }
 
@@ -185,15 +186,13 @@ std::vector<SurfaceProbe> surface_probes(const io::Scene& scene,
   return probes;
 }
 
+/// One field of the first body's coupling monitor of every step.
 template <typename T, typename F>
 std::vector<T> coupling_column(const std::vector<std::vector<coupling::CouplingMonitor>>& steps,
                                F field) {
-  std::vector<T> out;
-  out.reserve(steps.size());
-  for (const auto& s : steps) out.push_back(s.empty() ? T{} : static_cast<T>(field(s.front())));
-  return out;
+  return column<T>(
+      steps, [&](const auto& s) { return s.empty() ? T{} : static_cast<T>(field(s.front())); });
 }
-
 template <int D>
 void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
                     const coupling::FlexibleBody<D>& body) {
