@@ -13,6 +13,26 @@
 
 namespace hm::coupling {
 
+namespace {
+
+/// The carrier's rigid state at t (at rest, unrotated, without one).
+motion::RigidState carrier_state(const std::optional<motion::RigidMotion>& carrier, double t) {
+  return carrier ? carrier->state(t) : motion::RigidState{};
+}
+
+bool rotates(const motion::RigidState& s) {
+  return !s.rotation.isIdentity(0.0) || s.omega.squaredNorm() > 0.0 || s.alpha.squaredNorm() > 0.0;
+}
+
+template <int D>
+Eigen::Vector3d widen(const ldd::Vec<D>& v) {
+  Eigen::Vector3d w = Eigen::Vector3d::Zero();
+  w.head<D>() = v;
+  return w;
+}
+
+}  // namespace
+
 const char* to_string(CouplingScheme scheme) {
   return scheme == CouplingScheme::strong ? "strong" : "explicit";
 }
@@ -26,6 +46,9 @@ FlexibleBody<D>::FlexibleBody(std::string name, ModalSurface<D> modes, int wall,
   if (modes_.x0.size() != wall_mesh.vertices().size() || modes_.shapes.rows() != D * n)
     input_error("flexible body '{}': {} mode-shape rows for {} vertices; its wall '{}' has {}",
                 name_, modes_.shapes.rows(), n, wall_mesh.name(), wall_mesh.vertices().size());
+  if (modes_.initial_velocity.size() != 0 && modes_.initial_velocity.size() != m)
+    input_error("flexible body '{}': {} initial modal velocities for {} modes", name_,
+                modes_.initial_velocity.size(), m);
   if (modes_.omega.size() != m || modes_.zeta.size() != m)
     input_error("flexible body '{}': {} modes but {} frequencies and {} damping ratios", name_, m,
                 modes_.omega.size(), modes_.zeta.size());
@@ -58,15 +81,35 @@ double FlexibleBody<D>::max_speed() const {
   double speed = 0.0;
   for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(modes_.x0.size()); ++k)
     speed = std::max(speed, field(v_, k).norm());
-  return speed + (carrier_ ? carrier_->state(time_).velocity.norm() : 0.0);
+  if (!carrier_) return speed;
+  const motion::RigidState s = carrier_->state(time_);
+  double reach = 0.0;  // the farthest vertex from the pivot
+  for (const auto& x : modes_.x0) reach = std::max(reach, (widen<D>(x) - s.pivot).norm() + size_);
+  return speed + s.velocity.norm() + s.omega.norm() * reach;
+}
+
+template <int D>
+double FlexibleBody<D>::deformation() const {
+  const Eigen::VectorXd elastic = (modes_.omega.array() > 0.0).select(y_, 0.0);
+  double largest = 0.0;
+  for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(modes_.x0.size()); ++k)
+    largest = std::max(largest, field(elastic, k).norm());
+  return largest;
+}
+
+template <int D>
+double FlexibleBody<D>::peak_pressure(const ldd::FlowSolver<D>& flow) const {
+  const auto& points = flow.points();
+  double peak = 0.0;
+  for (ldd::Index i = 0; i < points.size(); ++i)
+    if (points.kind[i] == ldd::PointKind::wall && points.host[i].body == wall_)
+      peak = std::max(peak, points.pressure[i]);
+  return peak;
 }
 
 template <int D>
 double FlexibleBody<D>::stretch() const {
-  double largest = 0.0;
-  for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(modes_.x0.size()); ++k)
-    largest = std::max(largest, field(y_, k).norm());
-  return size_ > 0.0 ? largest / size_ : 0.0;
+  return size_ > 0.0 ? deformation() / size_ : 0.0;
 }
 
 template <int D>
@@ -74,51 +117,62 @@ void FlexibleBody<D>::set_carrier(motion::RigidMotion carrier) {
   carrier_ = std::move(carrier);
 }
 
-namespace {
-
-/// The carrier's translation, velocity and acceleration at t (zero without one); InputError when
-/// it rotates (the rotating frame's terms are not implemented for flexible bodies).
-template <int D>
-std::array<ldd::Vec<D>, 3> carrier_translation(const std::optional<motion::RigidMotion>& carrier,
-                                               double t, const std::string& body) {
-  std::array<ldd::Vec<D>, 3> out{ldd::Vec<D>::Zero(), ldd::Vec<D>::Zero(), ldd::Vec<D>::Zero()};
-  if (!carrier) return out;
-  const motion::RigidState s = carrier->state(t);
-  if (!s.rotation.isIdentity(1e-14) || s.omega.norm() > 0.0 || s.alpha.norm() > 0.0)
-    input_error(
-        "flexible body '{}': its tank rotates at t = {} s; a flexible body moves with a tank "
-        "in translation only in this version",
-        body, t);
-  out[0] = s.translation.head<D>();
-  out[1] = s.velocity.head<D>();
-  out[2] = s.acceleration.head<D>();
-  return out;
-}
-
-}  // namespace
-
 template <int D>
 Eigen::VectorXd FlexibleBody<D>::inertial_force(double t) const {
   const Eigen::Index m = modes_.modes();
   if (modes_.participation.size() == 0) return Eigen::VectorXd::Zero(m);
-  const auto [X, V, A] = carrier_translation<D>(carrier_, t, name_);
-  return modes_.participation * (gravity_ - A);
+  const motion::RigidState s = carrier_state(carrier_, t);
+  // Body-frame gravity and tank acceleration: Γ·Rᵀ(g − Ẍ).
+  const Eigen::Vector3d load = s.rotation.transpose() * (widen<D>(gravity_) - s.acceleration);
+  Eigen::VectorXd F = modes_.participation * load.head<D>();
+  if (!rotates(s)) return F;
+  // The Euler term −Γ_rot(c)·α of the rotation about the pivot c (spec §4.3); the centrifugal
+  // and Coriolis terms, of order Ω²r and Ωu̇ against g, are left out (1e-2 g for the paper's
+  // rolling tanks).
+  if (modes_.rotation_participation.rows() != m)
+    input_error(
+        "flexible body '{}': its tank rotates but the mode set has no rotational "
+        "participation factors",
+        name_);
+  const Eigen::Vector3d alpha = s.rotation.transpose() * s.alpha;
+  // Γ_rot about the pivot: Φᵀ M (e_k × (x − c)) = Γ_rot(q)_k + Γ·(e_k × (q − c)), q the modes'
+  // reference point; the pivot in the body frame is the material pivot s.pivot.
+  const Eigen::Vector3d q_minus_c = modes_.rotation_reference - s.pivot;
+  for (int k = (D == 2 ? 2 : 0); k < 3; ++k) {
+    const int column = D == 2 ? 0 : k;
+    const Eigen::Vector3d arm = Eigen::Vector3d::Unit(k).cross(q_minus_c);
+    const Eigen::VectorXd about_pivot =
+        modes_.rotation_participation.col(column) + modes_.participation * arm.head<D>();
+    F -= about_pivot * alpha[k];
+  }
+  return F;
 }
 
 template <int D>
 void FlexibleBody<D>::place(ldd::WallMesh<D>& wall, const Eigen::VectorXd& y,
                             const Eigen::VectorXd& v, const Eigen::VectorXd& a, double t) const {
-  const auto [X, V, A] = carrier_translation<D>(carrier_, t, name_);
+  const motion::RigidState s = carrier_state(carrier_, t);
+  const Eigen::Matrix3d& R = s.rotation;
+  const Eigen::Vector3d c = s.pivot + s.translation;
   const std::size_t n = modes_.x0.size();
   std::vector<ldd::Vec<D>> x(n), xv(n), xa(n);
   const Eigen::VectorXd u = modes_.shapes * y, uv = modes_.shapes * v, ua = modes_.shapes * a;
   for (std::size_t k = 0; k < n; ++k) {
-    const auto r = static_cast<Eigen::Index>(D * k);
-    x[k] = X + modes_.x0[k] + u.segment<D>(r);
-    xv[k] = V + uv.segment<D>(r);
-    xa[k] = A + ua.segment<D>(r);
+    const auto row = static_cast<Eigen::Index>(D * k);
+    // x = c + R(x0 + u − c0): the body's point in the tank frame carried by the tank (c0 the
+    // material pivot); v and a with the rigid, relative and Coriolis parts (spec §4.1).
+    const Eigen::Vector3d r =
+        R * (widen<D>(ldd::Vec<D>(modes_.x0[k] + u.segment<D>(row))) - s.pivot);
+    const Eigen::Vector3d rel_v = R * widen<D>(ldd::Vec<D>(uv.segment<D>(row)));
+    const Eigen::Vector3d rel_a = R * widen<D>(ldd::Vec<D>(ua.segment<D>(row)));
+    x[k] = (c + r).head<D>();
+    xv[k] = (s.velocity + s.omega.cross(r) + rel_v).head<D>();
+    xa[k] = (s.acceleration + s.alpha.cross(r) + s.omega.cross(s.omega.cross(r)) +
+             2.0 * s.omega.cross(rel_v) + rel_a)
+                .head<D>();
   }
   wall.move(x, xv, xa);
+  placed_rotation_ = R.topLeftCorner<D, D>();
 }
 
 template <int D>
@@ -127,8 +181,9 @@ Eigen::VectorXd FlexibleBody<D>::modal_force(const ldd::FlowSolver<D>& flow,
   const auto& wall = flow.walls()[static_cast<std::size_t>(wall_)];
   const auto loads = ldd::wall_pressure_loads<D>(flow.points(), wall, wall_, flow.dx(), pressure);
   Eigen::VectorXd f(D * static_cast<Eigen::Index>(loads.vertex_force.size()));
-  for (std::size_t k = 0; k < loads.vertex_force.size(); ++k)
-    f.segment<D>(static_cast<Eigen::Index>(D * k)) = loads.vertex_force[k];
+  for (std::size_t k = 0; k < loads.vertex_force.size(); ++k)  // in the tank's (body's) frame
+    f.segment<D>(static_cast<Eigen::Index>(D * k)) =
+        placed_rotation_.transpose() * loads.vertex_force[k];
   return options_.load_scale * (modes_.shapes.transpose() * f);
 }
 
@@ -158,7 +213,9 @@ void FlexibleBody<D>::measure_added_mass(ldd::FlowSolver<D>& flow, double dt) {
       const auto& h = points.host[i];
       for (int c = 0; c < D; ++c) {
         const auto vertex = static_cast<Eigen::Index>(wall.element(h.element)[c]);
-        acceleration[i] += h.barycentric[c] * modes_.shapes.template block<D, 1>(D * vertex, mode);
+        acceleration[i] +=
+            h.barycentric[c] *
+            (placed_rotation_ * modes_.shapes.template block<D, 1>(D * vertex, mode));
       }
     }
     added.col(mode) = -modal_force(flow, flow.acceleration_pressure(acceleration));
@@ -175,9 +232,11 @@ Eigen::VectorXd FlexibleBody<D>::modal_acceleration() const {
 template <int D>
 void FlexibleBody<D>::start(ldd::FlowSolver<D>& flow) {
   const Eigen::Index m = modes_.modes();
-  y_ = v_ = Eigen::VectorXd::Zero(m);
+  y_ = Eigen::VectorXd::Zero(m);
+  v_ = modes_.initial_velocity.size() == m ? modes_.initial_velocity : Eigen::VectorXd::Zero(m);
   time_ = flow.time();
   gravity_ = flow.options().gravity;
+  place(flow.walls()[static_cast<std::size_t>(wall_)], y_, v_, Eigen::VectorXd::Zero(m), time_);
   const Eigen::VectorXd hydro = modal_force(flow) + inertial_force(time_);
   if (options_.static_start) {
     for (Eigen::Index i = 0; i < m; ++i)
@@ -211,6 +270,7 @@ void FlexibleBody<D>::restore(const BodyState& state) {
   added_mass_ = state.added_mass;
   initial_added_mass_ = state.initial_added_mass;
   coefficient_dt_ = -1.0;
+  placed_rotation_ = carrier_state(carrier_, time_).rotation.topLeftCorner<D, D>();
 }
 
 template <int D>
@@ -362,6 +422,8 @@ ldd::StepMonitor coupled_step(ldd::FlowSolver<D>& flow, std::span<FlexibleBody<D
   for (std::size_t b = 0; b < bodies.size(); ++b) {
     bodies[b].correct(measured[b]);
     coupling[b].stretch = bodies[b].stretch();
+    coupling[b].deformation = bodies[b].deformation();
+    coupling[b].peak_pressure = bodies[b].peak_pressure(flow);
   }
   own += since(t);
   for (auto& c : coupling) {

@@ -53,6 +53,14 @@ struct ModalSurface {
   /// Γ = ΦᵀM T, n_modes × D [√kg]: the modal force of a uniform acceleration (gravity, the
   /// tank's); empty = none (the body's own weight and base excitation are then left out).
   Eigen::MatrixXd participation;
+  /// Φᵀ M R for unit rotations about `rotation_reference` [√kg·m]: n_modes × 1 (about z) in 2-D,
+  /// n_modes × 3 (about x, y, z) in 3-D; needed on a rotating tank (the Euler term), else may be
+  /// empty.
+  Eigen::MatrixXd rotation_participation;
+  Eigen::Vector3d rotation_reference = Eigen::Vector3d::Zero();  ///< [m]
+  /// Modal velocities at the start [m·√kg/s]; empty = at rest (a body entering the water at a
+  /// given speed: make_free_translation).
+  Eigen::VectorXd initial_velocity;
   Eigen::Index modes() const { return shapes.cols(); }
 };
 
@@ -73,10 +81,12 @@ struct CouplingOptions {
 
 /// What the coupling did in one step.
 struct CouplingMonitor {
-  int iterations = 0;     ///< PPE solves of the step
-  double residual = 0.0;  ///< interface residual after the last solve [1]
-  bool converged = true;  ///< residual ≤ tolerance (explicit: always)
-  double stretch = 0.0;   ///< max_v |Σ Φ_v y| / body size (linear-mode validity, flag > 5 %)
+  int iterations = 0;          ///< PPE solves of the step
+  double residual = 0.0;       ///< interface residual after the last solve [1]
+  bool converged = true;       ///< residual ≤ tolerance (explicit: always)
+  double stretch = 0.0;        ///< max_v |Σ Φ_v y| / body size (linear-mode validity, flag > 5 %)
+  double deformation = 0.0;    ///< max_v |Σ Φ_v y| of the elastic modes (ω > 0) [m]
+  double peak_pressure = 0.0;  ///< largest pressure of the body's wall nodes at the step's end [Pa]
   bool added_mass_measured = false;
   /// Wall-clock time of the coupling itself [s]: loads and modal forces, CFPI, wall updates
   /// (mode superposition, normals, tree refit, wall nodes); the PPE re-solves of the
@@ -120,8 +130,13 @@ class FlexibleBody {
   ldd::Vec<D> displacement(Eigen::Index vertex) const;
   /// Largest vertex speed |Σ Φ_v ẏ| at the current state [m/s].
   double max_speed() const;
-  /// max_v |Σ Φ_v y| / size().
+  /// The largest elastic displacement max_v |Σ_{ω_i > 0} Φ_{v,i} y_i| [m]: the rigid-body
+  /// translation of a free body (ω = 0) moves it without deforming it.
+  double deformation() const;
+  /// deformation() / size().
   double stretch() const;
+  /// The largest pressure on the body's wall nodes in the flow's current state [Pa].
+  double peak_pressure(const ldd::FlowSolver<D>& flow) const;
 
   /// The fluid's modal forces s·Φᵀf [N/√kg] for the flow's pressure (or `pressure`).
   Eigen::VectorXd modal_force(const ldd::FlowSolver<D>& flow,
@@ -130,21 +145,25 @@ class FlexibleBody {
   /// keeps it.
   void measure_added_mass(ldd::FlowSolver<D>& flow, double dt);
 
-  /// Sets the state at the flow's start: y = v = 0 and the load of the fluid at rest; with the
-  /// strong scheme the load and acceleration are made consistent with the fluid's reaction
-  /// (F(0⁺) = F_h − M̂ ÿ(0), spec §3.5 item 3: starting from F_h kicks the body at its dry rate).
-  /// With static_start: y = F_h/ω² for every elastic mode, ÿ = 0 (the fluid points stay where
-  /// they were seeded; the deformed wall pushes out those it overlaps at the first step).
+  /// Sets the state at the flow's start: y = 0, v = the modes' initial velocity (else 0), and the
+  /// load of the fluid at rest; with the strong scheme the load and acceleration are made
+  /// consistent with the fluid's reaction (F(0⁺) = F_h − M̂ ÿ(0), spec §3.5 item 3: starting from
+  /// F_h kicks the body at its dry rate). With static_start: y = F_h/ω² for every elastic mode, ÿ =
+  /// 0 (the fluid points stay where they were seeded; the deformed wall pushes out those it
+  /// overlaps at the first step).
   void start(ldd::FlowSolver<D>& flow);
 
   BodyState state() const { return {time_, y_, v_, a_, F_, added_mass_, initial_added_mass_}; }
 
-  /// Clamps the body to a tank in rigid translation (sway or a table without rotation): its
-  /// surface moves with the tank, x = X(t) + X0 + ΣΦy, the modes stay relative to the tank, and
-  /// the modal load gains the base excitation −Γ·Ẍ (spec §4.3). Call before start().
+  /// Clamps the body to a tank in rigid motion (sway, roll or a table): its surface moves with
+  /// the tank, x = c + X(t) + R(t)(X0 + ΣΦy − c), the modes stay relative to the tank, the
+  /// fluid's load is taken in the tank's frame (Φᵀ Rᵀ f) and the modal load gains the base
+  /// excitation and gravity Γ·Rᵀ(g − Ẍ) and, for a rotation, the Euler term −Γ_rot(c)·α
+  /// (spec §4.3; the centrifugal and Coriolis loads are left out). Call before start().
   void set_carrier(motion::RigidMotion carrier);
-  /// The modal force of the body's own weight and of the tank's acceleration at time t,
-  /// Γ(g − Ẍ(t)) [N/√kg] (zero without participation factors).
+  /// The modal force of the body's own weight and of the tank's motion at time t,
+  /// Γ·Rᵀ(g − Ẍ) − Γ_rot(c)·α [N/√kg] (zero without participation factors; InputError on a
+  /// rotating tank without rotational participation factors).
   Eigen::VectorXd inertial_force(double t) const;
   /// The gravity of the flow [m/s²] (taken at start() and by coupled_step).
   void set_gravity(const ldd::Vec<D>& g) { gravity_ = g; }
@@ -172,6 +191,8 @@ class FlexibleBody {
   std::string name_;
   ModalSurface<D> modes_;
   std::optional<motion::RigidMotion> carrier_;
+  /// The tank's rotation where the wall was last placed (the fluid's loads are rotated back).
+  mutable Eigen::Matrix<double, D, D> placed_rotation_ = Eigen::Matrix<double, D, D>::Identity();
   ldd::Vec<D> gravity_ = ldd::Vec<D>::Zero();  ///< [m/s²], from the flow at start()
   double time_ = 0.0;                          ///< of the state y_, v_ [s]
   int wall_;

@@ -68,7 +68,7 @@ ldd::StepMonitor unpack_monitor(const double* r) {
   return m;
 }
 
-constexpr int coupling_fields = 7;
+constexpr int coupling_fields = 9;
 
 void pack(const coupling::CouplingMonitor& c, double* r) {
   r[0] = c.iterations;
@@ -78,6 +78,8 @@ void pack(const coupling::CouplingMonitor& c, double* r) {
   r[4] = c.added_mass_measured ? 1.0 : 0.0;
   r[5] = c.seconds;
   r[6] = c.added_mass_seconds;
+  r[7] = c.deformation;
+  r[8] = c.peak_pressure;
 }
 
 coupling::CouplingMonitor unpack_coupling(const double* r) {
@@ -89,6 +91,8 @@ coupling::CouplingMonitor unpack_coupling(const double* r) {
   c.added_mass_measured = r[4] != 0.0;
   c.seconds = r[5];
   c.added_mass_seconds = r[6];
+  c.deformation = r[7];
+  c.peak_pressure = r[8];
   return c;
 }
 
@@ -345,6 +349,11 @@ coupling::RunResult read_run(const io::ArtefactReader& r, std::size_t bodies) {
   }
   if (r.has("/run/coupling")) {
     const MatrixRM c = r.read_matrix("/run/coupling");
+    if (c.cols() != coupling_fields * static_cast<Eigen::Index>(bodies))
+      input_error(
+          "{}: /run/coupling has {} columns; this version writes {} per body ({} "
+          "bodies): the checkpoint is from another version, rerun without --restart",
+          r.path().string(), c.cols(), coupling_fields, bodies);
     for (Eigen::Index k = 0; k < c.rows(); ++k) {
       run.coupling.emplace_back();
       for (std::size_t b = 0; b < bodies; ++b)

@@ -8,6 +8,7 @@
 #include "geometry/surface_io.hpp"
 #include "io/artefact.hpp"
 #include "io/xdmf.hpp"
+#include "mesh/wall_mesher.hpp"
 #include "rbf/interpolator.hpp"
 
 namespace hm::driver {
@@ -37,10 +38,28 @@ SourceModes read_source_modes(const io::ArtefactReader& r) {
   return s;
 }
 
+/// map.file: a surface mesh (.stl, .obj, .ply) as read, or a gmsh script (.geo) meshed as a
+/// wall at map.mesh_size, its curves (2-D) or surfaces (3-D) oriented with the fluid on their
+/// normal side — the wetted outside of the structure only, at the fluid's spacing (a structure
+/// mesh fine enough for thin plates has a boundary far finer than the fluid needs).
+mesh::SurfaceMesh read_target_file(const io::Scene& scene) {
+  const std::filesystem::path file = scene.file_path("map.file");
+  if (file.extension() != ".geo") return geometry::read_surface_file(file);
+  mesh::WallOptions o;
+  o.dim = scene.dimension();
+  o.size = scene.number("map.mesh_size");
+  if (!(o.size > 0))
+    input_error(
+        "{}: a .geo target ({}) is meshed at map.mesh_size; give it in metres (> 0), "
+        "e.g. half the fluid's dx",
+        scene.where("map.mesh_size"), file.string());
+  return mesh::mesh_wall_file(file, o);
+}
+
 mesh::SurfaceMesh target_surface(const io::Scene& scene, const SourceModes& source) {
   mesh::SurfaceMesh target = source.surface;
   if (scene.string("map.target") == "file") {
-    target = geometry::read_surface_file(scene.file_path("map.file"));
+    target = read_target_file(scene);
     if (target.dim != source.surface.dim)
       input_error("{}: the target surface is {}-D but the structure is {}-D",
                   scene.where("map.file"), target.dim, source.surface.dim);

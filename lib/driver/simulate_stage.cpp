@@ -13,6 +13,7 @@
 #include "core/log.hpp"
 #include "core/progress.hpp"
 #include "core/text.hpp"
+#include "coupling/free_motion.hpp"
 #include "coupling/probes.hpp"
 #include "coupling/run.hpp"
 #include "coupling/structure_run.hpp"
@@ -139,6 +140,7 @@ MappedBody<D> read_mapped_body(const std::filesystem::path& file) {
   body.modes.omega = r.read_vector(ds::omega);
   body.modes.zeta = r.read_vector(ds::damping_ratio);
   body.modes.participation = r.read_matrix(ds::participation_translation);
+  body.modes.rotation_participation = r.read_matrix(ds::participation_rotation);
   return body;
 }
 
@@ -193,9 +195,47 @@ std::vector<T> coupling_column(const std::vector<std::vector<coupling::CouplingM
   return column<T>(
       steps, [&](const auto& s) { return s.empty() ? T{} : static_cast<T>(field(s.front())); });
 }
+/// The body's free translation (structure.free_translation), if the scene asks for one: its
+/// rigid-body modes become the one translation (coupling/free_motion.hpp).
+template <int D>
+std::optional<coupling::FreeTranslation> free_translation(const io::Scene& scene,
+                                                          coupling::ModalSurface<D>& modes) {
+  const std::string axis = scene.string("structure.free_translation");
+  if (axis.empty()) return std::nullopt;
+  const int a = axis == "x" ? 0 : axis == "y" ? 1 : 2;
+  if (a >= D)
+    input_error("{} = \"{}\": a {}-D case moves along x or y",
+                scene.where("structure.free_translation"), axis, D);
+  const double velocity = scene.number("structure.initial_velocity");
+  const coupling::FreeTranslation free = coupling::make_free_translation<D>(
+      modes, a, velocity, scene.where("structure.free_translation"));
+  spdlog::info(
+      "{}: the structure moves freely along {}: mass {:.6g} kg, {} rigid-body modes replaced by "
+      "the translation (mode {}), {} elastic modes, initial velocity {} m/s",
+      stage_name, axis, free.mass, free.rigid_dropped, free.mode, free.mode, velocity);
+  return free;
+}
+
+/// The free body's position and velocity along its axis from the translation's modal
+/// coordinate (y = √M·X), one row per modal row.
+void write_free_translation(io::ArtefactWriter& w, const coupling::ModalHistory& h,
+                            const coupling::FreeTranslation& free) {
+  const double root = std::sqrt(free.mass);
+  std::vector<double> position, velocity;
+  for (std::size_t k = 0; k < h.time.size(); ++k) {
+    position.push_back(h.y[k][free.mode] / root);
+    velocity.push_back(h.v[k][free.mode] / root);
+  }
+  w.write(ds::body_position, position);
+  w.write(ds::body_velocity, velocity);
+  w.set_attribute(ra::body_mass, free.mass);
+  w.set_attribute(ra::free_axis, std::string(1, "xyz"[free.axis]));
+}
+
 template <int D>
 void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
-                    const coupling::FlexibleBody<D>& body) {
+                    const coupling::FlexibleBody<D>& body,
+                    const std::optional<coupling::FreeTranslation>& free) {
   using C = coupling::CouplingMonitor;
   const coupling::ModalHistory& h = r.modal.front();
   const auto rows = static_cast<Eigen::Index>(h.time.size());
@@ -233,6 +273,23 @@ void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
   const double largest = stretch.empty() ? 0.0 : *std::max_element(stretch.begin(), stretch.end());
   w.set_attribute(ra::coupling_scheme, std::string(coupling::to_string(body.options().scheme)));
   w.set_attribute(ra::max_structure_stretch, largest);
+  const auto deformation =
+      coupling_column<double>(r.coupling, [](const C& c) { return c.deformation; });
+  w.write(ds::monitor_structure_deformation, deformation);
+  w.set_attribute(
+      ra::max_structure_deformation,
+      deformation.empty() ? 0.0 : *std::max_element(deformation.begin(), deformation.end()));
+  const auto peak = coupling_column<double>(r.coupling, [](const C& c) { return c.peak_pressure; });
+  w.write(ds::monitor_structure_peak_pressure, peak);
+  const auto highest = std::max_element(peak.begin(), peak.end());
+  w.set_attribute(ra::max_structure_pressure, highest == peak.end() ? 0.0 : *highest);
+  if (highest != peak.end())
+    spdlog::info(
+        "{}: the structure's largest wall pressure {:.6g} Pa (step {}), its largest "
+        "elastic displacement {:.4g} m",
+        stage_name, *highest, highest - peak.begin() + 1,
+        *std::max_element(deformation.begin(), deformation.end()));
+  if (free) write_free_translation(w, h, *free);
   if (largest > 0.05)
     spdlog::warn(
         "{}: the structure's displacement reached {:.1f} % of its size: linear modes stretch "
@@ -304,16 +361,26 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
 
   std::vector<coupling::FlexibleBody<D>> bodies;
   std::vector<SurfaceProbe> displacement;
+  std::optional<coupling::FreeTranslation> free;
   if (mapped) {
     displacement = surface_probes<D>(scene, mapped->modes);
+    free = free_translation<D>(scene, mapped->modes);
+    // The rotational participation factors are about the mode stage's reference point.
+    const Eigen::VectorXd reference = scene.vector("modes.reference_point");
+    mapped->modes.rotation_reference.head(reference.size()) = reference;
     bodies.emplace_back(structure_wall_name, std::move(mapped->modes), setup.structure_wall,
                         coupling_options(scene),
                         solver.walls()[static_cast<std::size_t>(setup.structure_wall)]);
     if (const std::string host = scene.string("coupling.moves_with"); !host.empty()) {
+      if (free)
+        input_error(
+            "{} = \"{}\" and structure.free_translation: a body either moves with a "
+            "tank or freely, not both",
+            scene.where("coupling.moves_with"), host);
       const auto w = static_cast<std::size_t>(
           std::find(setup.wall_names.begin(), setup.wall_names.end(), host) -
           setup.wall_names.begin());
-      if (w >= setup.walls.size() || !setup.motions[w].motion)
+      if (w >= setup.wall_names.size() || !setup.motions[w].motion)
         input_error("{} = \"{}\" must name a [[wall]] in motion (walls: {})",
                     scene.where("coupling.moves_with"), host, fmt::join(setup.wall_names, ", "));
       bodies.front().set_carrier(*setup.motions[w].motion);
@@ -395,7 +462,7 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   write_monitors(w, r.monitors);
   write_phase_totals(w, r.phase_totals);
   write_probes(w, r.probes, columns);
-  if (!bodies.empty()) write_coupling<D>(w, r, bodies.front());
+  if (!bodies.empty()) write_coupling<D>(w, r, bodies.front(), free);
   if (!completed) w.set_attribute(io::attr::status, "diverged: " + first_line(r.divergence_report));
   w.set_attribute(ra::run_status, std::string(coupling::to_string(r.status)));
   w.set_attribute(ra::divergence_report, r.divergence_report);

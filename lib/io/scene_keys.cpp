@@ -386,6 +386,16 @@ const std::vector<KeyDecl>& scene_keys() {
               "the [[load]]s at t = 0 (structure-only runs) or the fluid's load at rest "
               "(coupled runs: a tank filled with the structure in place)",
               simulate_stage),
+      text("structure.free_translation", "\"\"", {"", "x", "y", "z"},
+           "coupled runs: the axis along which the body moves freely under gravity and the "
+           "fluid's force (a wedge dropped on a guided rig); needs a free-free mode set "
+           "(structure.clamped = \"\") whose rigid-body modes it replaces by this translation; "
+           "empty: the body stays where its modes put it",
+           simulate_stage),
+      number("structure.initial_velocity", "0.0", "m/s", -inf, inf,
+             "with free_translation: the body's velocity along the axis at t = 0 (negative: "
+             "towards lower coordinates, e.g. falling)",
+             simulate_stage),
 
       // [modes]
       integer("modes.count", "10", 1, 100000,
@@ -422,9 +432,12 @@ const std::vector<KeyDecl>& scene_keys() {
            "file: the surface mesh in map.file",
            map_stage),
       text("map.file", "\"\"", {},
-           "target surface mesh for map.target = \"file\" (.stl, .obj, .ply; metres), relative to "
-           "the scene",
+           "target surface for map.target = \"file\", relative to the scene: a surface mesh "
+           "(.stl, .obj, .ply; metres) or a gmsh script (.geo, meshed at map.mesh_size; curves "
+           "in 2-D, surfaces in 3-D, oriented with the fluid on their normal side)",
            map_stage),
+      number("map.mesh_size", "0.0", "m", 0, inf,
+             "element size of a .geo target (map.file), e.g. half the fluid's dx", map_stage),
       number("map.max_edge", "0.0", "m", 0, inf,
              "when > 0, the target surface is refined until no edge is longer (the fluid's "
              "resolution)",

@@ -239,7 +239,9 @@ const SchemaSpec& results_schema() {
       "comma-separated), dt_limit_names (the names of the /monitors/dt_limit codes in code order: "
       "cfl, viscous, acceleration, maximum, output) and phase_names (the entries of "
       "/run/phase_seconds); a coupled run also coupling_scheme, max_structure_stretch, "
-      "coupling_seconds and added_mass_seconds. A "
+      "max_structure_deformation [m], max_structure_pressure [Pa], coupling_seconds and "
+      "added_mass_seconds, and with a body "
+      "in free translation body_mass [kg] and free_axis. A "
       "diverged run has status \"diverged: ...\" (so --if-stale reruns "
       "it). A flow run has the /monitors and /run datasets; a structure-only run (no fluid) the "
       "/modal ones instead; a coupled run (fluid and structure) both.",
@@ -358,6 +360,28 @@ const SchemaSpec& results_schema() {
                     "s",
                     "coupled runs: wall-clock time of the coupling in the step (loads, CFPI, "
                     "wall updates, added-mass solves; not the PPE re-solves)"}),
+          optional({ds::monitor_structure_deformation,
+                    DType::f64,
+                    {"n_steps"},
+                    "m",
+                    "coupled runs: max |sum Phi y| of the elastic modes over the structure's "
+                    "surface (a free body's rigid translation excluded)"}),
+          optional({ds::monitor_structure_peak_pressure,
+                    DType::f64,
+                    {"n_steps"},
+                    "Pa",
+                    "coupled runs: the largest pressure of the structure's wall nodes at the "
+                    "step's end"}),
+          optional({ds::body_position,
+                    DType::f64,
+                    {"n_modal_rows"},
+                    "m",
+                    "a body in free translation: its displacement along free_axis"}),
+          optional({ds::body_velocity,
+                    DType::f64,
+                    {"n_modal_rows"},
+                    "m/s",
+                    "a body in free translation: its velocity along free_axis"}),
       }};
   return spec;
 }

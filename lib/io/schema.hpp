@@ -125,6 +125,10 @@ inline constexpr const char* monitor_coupling_iterations = "/monitors/coupling_i
 inline constexpr const char* monitor_interface_residual = "/monitors/interface_residual";
 inline constexpr const char* monitor_structure_stretch = "/monitors/structure_stretch";
 inline constexpr const char* monitor_coupling_seconds = "/monitors/coupling_seconds";
+inline constexpr const char* monitor_structure_deformation = "/monitors/structure_deformation";
+inline constexpr const char* monitor_structure_peak_pressure = "/monitors/structure_peak_pressure";
+inline constexpr const char* body_position = "/body/position";
+inline constexpr const char* body_velocity = "/body/velocity";
 }  // namespace ds
 
 /// Root attributes of hydromodal.results (besides the provenance ones).
@@ -148,6 +152,13 @@ inline constexpr const char* max_structure_stretch = "max_structure_stretch";
 /// re-solves of the sub-iterations), and the added-mass part alone.
 inline constexpr const char* coupling_seconds = "coupling_seconds";
 inline constexpr const char* added_mass_seconds = "added_mass_seconds";
+/// Largest elastic displacement of the run [m] (the rigid translation of a free body excluded).
+inline constexpr const char* max_structure_deformation = "max_structure_deformation";
+/// Largest wall-node pressure on the structure over the run [Pa].
+inline constexpr const char* max_structure_pressure = "max_structure_pressure";
+/// A body in free translation: its mass [kg] and its axis (x, y or z).
+inline constexpr const char* body_mass = "body_mass";
+inline constexpr const char* free_axis = "free_axis";
 }  // namespace results_attr
 
 const SchemaSpec& mesh_schema();
