@@ -179,7 +179,13 @@ template <int D>
 Eigen::VectorXd FlexibleBody<D>::modal_force(const ldd::FlowSolver<D>& flow,
                                              std::span<const double> pressure) const {
   const auto& wall = flow.walls()[static_cast<std::size_t>(wall_)];
-  const auto loads = ldd::wall_pressure_loads<D>(flow.points(), wall, wall_, flow.dx(), pressure);
+  auto loads = ldd::wall_pressure_loads<D>(flow.points(), wall, wall_, flow.dx(), pressure);
+  if (options_.viscous_traction && pressure.empty()) {
+    const auto shear = ldd::wall_viscous_loads<D>(
+        flow.points(), wall, flow.dx(), flow.options().density * flow.options().viscosity);
+    for (std::size_t k = 0; k < loads.vertex_force.size(); ++k)
+      loads.vertex_force[k] += shear.vertex_force[k];
+  }
   Eigen::VectorXd f(D * static_cast<Eigen::Index>(loads.vertex_force.size()));
   for (std::size_t k = 0; k < loads.vertex_force.size(); ++k)  // in the tank's (body's) frame
     f.segment<D>(static_cast<Eigen::Index>(D * k)) =

@@ -77,6 +77,8 @@ struct CouplingOptions {
   /// experiment that fills the tank with the structure in place does (spec §4.3), instead of
   /// from the undeformed shape with the load applied suddenly.
   bool static_start = false;
+  /// Add the fluid's wall shear (ldd::wall_viscous_loads, μ = ρν) to the pressure loads.
+  bool viscous_traction = false;
 };
 
 /// What the coupling did in one step.
@@ -138,7 +140,9 @@ class FlexibleBody {
   /// The largest pressure on the body's wall nodes in the flow's current state [Pa].
   double peak_pressure(const ldd::FlowSolver<D>& flow) const;
 
-  /// The fluid's modal forces s·Φᵀf [N/√kg] for the flow's pressure (or `pressure`).
+  /// The fluid's modal forces s·Φᵀf [N/√kg] for the flow's pressure (or `pressure`, e.g. the
+  /// added-mass response, which is inviscid); with viscous_traction f includes the wall shear
+  /// of the flow's velocity (not with `pressure` given).
   Eigen::VectorXd modal_force(const ldd::FlowSolver<D>& flow,
                               std::span<const double> pressure = {}) const;
   /// Measures M̂ on the flow's current state for steps of dt [s] (one PPE solve per mode) and

@@ -154,6 +154,7 @@ coupling::CouplingOptions coupling_options(const io::Scene& scene) {
   o.added_mass_interval = static_cast<long>(c.number("added_mass_interval"));
   o.load_scale = scene.dimension() == 2 ? scene.number("structure.thickness") : 1.0;
   o.static_start = scene.boolean("structure.static_start");
+  o.viscous_traction = c.boolean("viscous_traction");
   return o;
 }
 

@@ -377,6 +377,11 @@ const std::vector<KeyDecl>& scene_keys() {
            "clamped to: it moves with it, its modes relative to it, loaded by the base "
            "excitation −Γ·Ẍ; empty: fixed in space. A rotating tank is not supported yet",
            simulate_stage),
+      boolean("coupling.viscous_traction", "false",
+              "add the fluid's wall shear μ ∂u_t/∂n (μ = ρν, one-sided from the fluid points in "
+              "front of the wall) to the pressure loads on the structure; off: pressure only "
+              "(the force probes are pressure forces either way)",
+              simulate_stage),
       integer("coupling.added_mass_interval", "20", 1, 1000000,
               "strong: steps between measurements of the modal added-mass matrix (one PPE per "
               "mode)",

@@ -56,10 +56,16 @@ class WallNodeGrid {
  public:
   using Cell = std::array<std::int64_t, D>;
 
-  WallNodeGrid(const PointSet<D>& points, int body, double cell) : cell_(cell) {
+  WallNodeGrid(const PointSet<D>& points, int body, double cell)
+      : WallNodeGrid(points, cell, [&](Index i) {
+          return is_active_wall_node(points, i) && points.host[i].body == body;
+        }) {}
+
+  /// The points i with keep(i) (e.g. the connected fluid points for the wall shear).
+  template <typename Keep>
+  WallNodeGrid(const PointSet<D>& points, double cell, Keep&& keep) : cell_(cell) {
     for (Index i = 0; i < points.size(); ++i)
-      if (is_active_wall_node(points, i) && points.host[i].body == body)
-        entries_.emplace_back(cell_of(points.position[i]), i);
+      if (keep(i)) entries_.emplace_back(cell_of(points.position[i]), i);
     std::sort(entries_.begin(), entries_.end());
   }
 
@@ -183,6 +189,69 @@ ElementLoad<D> element_load(const PointSet<D>& points, std::span<const double> p
   return load;
 }
 
+/// Wall shear traction at x (wall velocity U, side normal n) from the fluid points of `fluid`
+/// (a grid of cell 2.5 dx) in front of it (wall_viscous_loads); `weight` receives Σ W (0: dry).
+template <int D>
+Vec<D> shepard_wall_shear(const PointSet<D>& points, const WallNodeGrid<D>& fluid, const Vec<D>& x,
+                          const Vec<D>& U, const Vec<D>& n, double dx, double mu, double& weight) {
+  double sum_w = 0.0;
+  Vec<D> sum = Vec<D>::Zero();
+  fluid.for_each_near(x, [&](Index j) {
+    const Vec<D> r = points.position[j] - x;
+    const double d = r.dot(n);
+    if (d < 0.25 * dx || d > 2.0 * dx || (r - d * n).norm() >= dx) return;
+    const double w = wendland_c2(r.norm() / (2.0 * dx));
+    Vec<D> du = points.velocity[j] - U;
+    du -= du.dot(n) * n;
+    sum_w += w;
+    sum += (w / d) * du;
+  });
+  weight = sum_w;
+  return sum_w > 0.0 ? Vec<D>(mu * sum / sum_w) : Vec<D>::Zero();
+}
+
+template <int D>
+ElementLoad<D> element_shear(const PointSet<D>& points, const WallMesh<D>& wall,
+                             const WallNodeGrid<D>& fluid, Index e, double dx, double mu) {
+  const auto& cell = wall.element(e);
+  std::array<Vec<D>, D> x;
+  for (int k = 0; k < D; ++k) x[k] = wall.vertices()[cell[k]];
+  const Vec<D> n = wall.normal_at(e, Vec<D>::Constant(1.0 / D));
+  ElementLoad<D> load;
+  load.vertex_force.fill(Vec<D>::Zero());
+  const int sides = wall.thin() ? 2 : 1;
+  for (const auto& q : element_quadrature(x, dx)) {
+    const Vec<D> xq = wall.point_at(e, q.barycentric), U = wall.velocity_at(e, q.barycentric);
+    Vec<D> traction = Vec<D>::Zero();
+    for (int s = 0; s < sides; ++s) {
+      double weight = 0.0;
+      traction += shepard_wall_shear(points, fluid, xq, U, s == 0 ? n : Vec<D>(-n), dx, mu, weight);
+      if (weight > 0.0) load.wetted += q.measure;
+    }
+    for (int k = 0; k < D; ++k) load.vertex_force[k] += (q.measure * q.barycentric[k]) * traction;
+  }
+  return load;
+}
+
+/// Sums per-element loads in element order (deterministic: Σ vertex_force == total bit for bit).
+template <int D>
+WallLoads<D> assemble_loads(const WallMesh<D>& wall,
+                            const std::vector<ElementLoad<D>>& per_element) {
+  const Index elements = wall.element_count();
+  WallLoads<D> loads;
+  loads.vertex_force.assign(wall.vertices().size(), Vec<D>::Zero());
+  loads.element_force.assign(static_cast<std::size_t>(elements), Vec<D>::Zero());
+  for (Index e = 0; e < elements; ++e) {
+    for (int k = 0; k < D; ++k) {
+      loads.vertex_force[wall.element(e)[k]] += per_element[e].vertex_force[k];
+      loads.element_force[e] += per_element[e].vertex_force[k];
+    }
+    loads.wetted += per_element[e].wetted;
+  }
+  for (const auto& f : loads.vertex_force) loads.total += f;
+  return loads;
+}
+
 }  // namespace
 
 // ---- probes -------------------------------------------------------------------------------------
@@ -261,19 +330,23 @@ WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& w
 #pragma omp parallel for schedule(dynamic, 16)
   for (Index e = 0; e < elements; ++e)
     per_element[e] = element_load(points, pressure, wall, grid, e, dx);
-  // Serial accumulation: deterministic sums, Σ vertex_force == total bit for bit.
-  WallLoads<D> loads;
-  loads.vertex_force.assign(wall.vertices().size(), Vec<D>::Zero());
-  loads.element_force.assign(static_cast<std::size_t>(elements), Vec<D>::Zero());
-  for (Index e = 0; e < elements; ++e) {
-    for (int k = 0; k < D; ++k) {
-      loads.vertex_force[wall.element(e)[k]] += per_element[e].vertex_force[k];
-      loads.element_force[e] += per_element[e].vertex_force[k];
-    }
-    loads.wetted += per_element[e].wetted;
-  }
-  for (const auto& f : loads.vertex_force) loads.total += f;
-  return loads;
+  return assemble_loads(wall, per_element);
+}
+
+template <int D>
+WallLoads<D> wall_viscous_loads(const PointSet<D>& points, const WallMesh<D>& wall, double dx,
+                                double dynamic_viscosity) {
+  HM_ASSERT(dx > 0.0 && dynamic_viscosity >= 0.0,
+            "wall_viscous_loads: dx {} must be > 0 and mu {} >= 0", dx, dynamic_viscosity);
+  // Cells of 2.5 dx hold every point within the 2 dx × dx box in front of a quadrature point.
+  const WallNodeGrid<D> fluid(points, 2.5 * dx,
+                              [&](Index i) { return is_connected_fluid(points, i); });
+  const Index elements = wall.element_count();
+  std::vector<ElementLoad<D>> per_element(static_cast<std::size_t>(elements));
+#pragma omp parallel for schedule(dynamic, 16)
+  for (Index e = 0; e < elements; ++e)
+    per_element[e] = element_shear(points, wall, fluid, e, dx, dynamic_viscosity);
+  return assemble_loads(wall, per_element);
 }
 
 template double probe_pressure<2>(const PointSet<2>&, std::span<const WallMesh<2>>, const Vec<2>&,
@@ -284,6 +357,8 @@ template double probe_elevation<2>(const PointSet<2>&, const Vec<2>&, double, bo
 template double probe_elevation<3>(const PointSet<3>&, const Vec<3>&, double, bool*);
 template double probe_front<2>(const PointSet<2>&, const Vec<2>&, double, double, double, bool*);
 template double probe_front<3>(const PointSet<3>&, const Vec<3>&, double, double, double, bool*);
+template WallLoads<2> wall_viscous_loads<2>(const PointSet<2>&, const WallMesh<2>&, double, double);
+template WallLoads<3> wall_viscous_loads<3>(const PointSet<3>&, const WallMesh<3>&, double, double);
 template WallLoads<2> wall_pressure_loads<2>(const PointSet<2>&, const WallMesh<2>&, int, double,
                                              std::span<const double>);
 template WallLoads<3> wall_pressure_loads<3>(const PointSet<3>&, const WallMesh<3>&, int, double,

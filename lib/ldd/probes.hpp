@@ -72,4 +72,17 @@ template <int D>
 WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& wall, int body,
                                  double dx, std::span<const double> pressure = {});
 
+/// Viscous (no-slip shear) loads of the fluid on `wall`, on the quadrature of
+/// wall_pressure_loads. At a quadrature point x_q with wall velocity U_q and normal n (into the
+/// fluid; both sides of a thin wall) the traction is the wall shear
+///   τ_w = μ ∂u_t/∂n ≈ μ·Σ_j W_j (u_j − U_q)_t / d_j / Σ_j W_j,
+/// over the connected fluid points j in front of it (normal distance d_j = n·(x_j − x_q) in
+/// [dx/4, 2dx], lateral distance below dx, weights W(r/2dx)): the one-sided first-order
+/// gradient, exact for a linear profile, first order for a curved one. (·)_t removes the normal
+/// part; the normal viscous stress 2μ ∂u_n/∂n vanishes at a no-slip wall (∂u_n/∂n = −∇_t·u_t =
+/// 0) and is left out. `dynamic_viscosity` μ = ρν [Pa·s]. Dry quadrature points carry none.
+template <int D>
+WallLoads<D> wall_viscous_loads(const PointSet<D>& points, const WallMesh<D>& wall, double dx,
+                                double dynamic_viscosity);
+
 }  // namespace hm::ldd

@@ -270,6 +270,39 @@ Vec<D> face_force(const WallMesh<D>& wall, const WallLoads<D>& loads, const Vec<
   return f;
 }
 
+// Wall shear (wall_viscous_loads) on the floor of the column under an imposed velocity field:
+// a linear profile u = (γy, 0) gives μγ per metre of floor exactly (the one-sided difference is
+// exact for it); a curved one u = (γy + b y², 0) is first order in dx: the error μ·b·d̄ halves
+// with dx. The side walls see only the normal component and carry no shear.
+TEST(LddProbes, WallShearOfAShearFlowOnTheFloor2D) {
+  const double mu = 1e-3, gamma = 2.0, b = 50.0, length = 0.5;
+  double previous = 0.0;
+  for (const double dx : {0.02, 0.01}) {
+    auto c = test::water_column<2>(Vec<2>(length, 0.4), 0.3, dx, 0.05);
+    for (const double curve : {0.0, b}) {
+      for (Index i = 0; i < c.points.size(); ++i)
+        if (c.points.kind[i] == PointKind::fluid) {
+          const double y = c.points.position[i].y();
+          c.points.velocity[i] = Vec<2>(gamma * y + curve * y * y, 0.0);
+        }
+      const auto loads = wall_viscous_loads<2>(c.points, c.walls[0], dx, mu);
+      const Vec<2> floor = face_force<2>(c.walls[0], loads, Vec<2>(0, 1));
+      const double exact = mu * gamma * length, error = std::abs(floor.x() / exact - 1);
+      std::printf("wall shear, dx = %.3g m, b = %g: floor %.6g N/m (exact %.6g, error %.2e)\n", dx,
+                  curve, floor.x(), exact, error);
+      EXPECT_LT((loads.total - floor).norm(), 1e-14);  // no shear on the side walls
+      if (curve == 0.0) {
+        EXPECT_LT(error, 1e-12);
+      } else {
+        if (previous > 0.0) {
+          EXPECT_NEAR(previous / error, 2.0, 0.3);  // first order
+        }
+        previous = error;
+      }
+    }
+  }
+}
+
 TEST(LddProbes, HydrostaticWallLoads2D) {
   // Column of 30 layers (dx = 1 cm) in a 0.5 m wide tank; p = ρg(H − y) with H = 0.295 m, the
   // top layer. Floor: ρgH·0.5 per metre; each side wall: ½ρgH².
