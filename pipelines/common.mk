@@ -2,6 +2,7 @@
 #   make -C pipelines/<case>            run every stale stage
 #   make -C pipelines/<case> mesh       stop after the mesh (likewise: modes, map)
 #   make -C pipelines/<case> simulate   the flow: results.h5, probes.csv, snapshots/
+#   make -C pipelines/<case> report     plots and error tables of a finished run: report/
 #   make -C pipelines/<case> clean      remove this case's outputs
 # Outputs go to out/<case>/<variant>/ at the repository root. Each stage's command line is
 # printed as it runs, so it can be rerun by hand (drop --if-stale to force a rerun).
@@ -39,10 +40,12 @@ FSI_MODES    := $(BIN)/fsi-modes/fsi-modes
 FSI_MAP      := $(BIN)/fsi-map/fsi-map
 FSI_SIMULATE := $(BIN)/fsi-simulate/fsi-simulate
 FSI_INSPECT  := $(BIN)/fsi-inspect/fsi-inspect
+FSI_REPORT   := $(BIN)/fsi-report/fsi-report
 
-.PHONY: all mesh modes map simulate summary clean FORCE
+.PHONY: all mesh modes map simulate report summary clean FORCE
 
-all: $(if $(HAS_STRUCTURE),map) $(if $(or $(HAS_FLUID),$(STRUCTURE_RUN)),simulate) summary
+SIMULATES := $(or $(HAS_FLUID),$(STRUCTURE_RUN))
+all: $(if $(HAS_STRUCTURE),map) $(if $(SIMULATES),simulate) summary $(if $(SIMULATES),report)
 mesh: $(OUT)/mesh.h5
 modes: $(OUT)/modes.h5
 map: $(OUT)/mapped.h5
@@ -65,6 +68,13 @@ COUPLED := $(and $(HAS_FLUID),$(HAS_STRUCTURE))
 $(OUT)/results.h5: $(if $(HAS_STRUCTURE),$(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),$(OUT)/modes.h5) $(if $(COUPLED),$(OUT)/mapped.h5) FORCE
 	@mkdir -p $(OUT)
 	$(FSI_SIMULATE) $(SCENE) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),--modes $(OUT)/modes.h5) $(if $(COUPLED),--mapped $(OUT)/mapped.h5) -o $@ --if-stale
+
+# The report (fsi-report): every probe against the scene's [[report.compare]] references, the
+# structure's response and the run monitors as PNG, the error metrics as metrics.md/.json.
+report: $(OUT)/report/metrics.h5
+$(OUT)/report/metrics.h5: $(OUT)/results.h5 FORCE
+	$(FSI_REPORT) $(SCENE) --results $(OUT)/results.h5 -o $@ --if-stale
+	@cat $(OUT)/report/metrics.md
 
 FORCE:
 

@@ -11,6 +11,7 @@ const std::vector<std::string> mesh_stage{"fsi-mesh"};
 const std::vector<std::string> modes_stage{"fsi-modes"};
 const std::vector<std::string> map_stage{"fsi-map"};
 const std::vector<std::string> simulate_stage{"fsi-simulate"};
+const std::vector<std::string> report_stage{"fsi-report"};
 
 KeyDecl number(std::string path, std::string def, std::string unit, double min, double max,
                std::string doc, std::vector<std::string> stages, bool min_excl = false,
@@ -116,6 +117,10 @@ const std::vector<SectionDecl>& scene_sections() {
        "\"structure\", moved by the modes and loaded by the fluid's pressure."},
       {"modes", false, "Mode extraction (fsi-modes)."},
       {"map", false, "Mapping of the mode shapes onto the surface the fluid sees (fsi-map)."},
+      {"report", false, "The report of a finished run (fsi-report): plots and error metrics."},
+      {"report.compare[]", false,
+       "A probe column against one reference curve (CSV with a header line): plotted together, "
+       "with the peak error, the time-of-peak error and the RMS difference."},
   };
   return sections;
 }
@@ -430,6 +435,26 @@ const std::vector<KeyDecl>& scene_keys() {
       integer("modes.max_restarts", "1000", 1, 1000000,
               "implicit restarts of the Lanczos iteration before it gives up (exit code 3)",
               modes_stage),
+
+      // [report], [[report.compare]]
+      vector("report.window", "[]", "s", 0,
+             "time window [t0, t1] of the RMS differences (empty: where run and reference "
+             "overlap)",
+             report_stage),
+      text("report.compare[].column", "", {}, "probe column as in probes.csv, e.g. \"tip.ux [m]\"",
+           report_stage),
+      text("report.compare[].file", "", {},
+           "reference CSV relative to the scene: a header line, then numbers", report_stage),
+      text("report.compare[].label", "\"\"", {},
+           "legend and table name of the reference (empty: the file name)", report_stage),
+      integer("report.compare[].time_column", "0", 0, 1000,
+              "0-based column of the reference's time [s]", report_stage),
+      integer("report.compare[].value_column", "1", 0, 1000,
+              "0-based column of the reference's value", report_stage),
+      number("report.compare[].scale", "1.0", "1", -inf, inf,
+             "factor from the reference's unit to the probe's SI unit", report_stage),
+      number("report.compare[].time_offset", "0.0", "s", -inf, inf,
+             "added to the reference's times (a reference with another time origin)", report_stage),
 
       // [map]
       text("map.target", "\"surface\"", {"surface", "file"},

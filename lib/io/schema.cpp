@@ -386,6 +386,27 @@ const SchemaSpec& results_schema() {
   return spec;
 }
 
+const SchemaSpec& report_schema() {
+  static const SchemaSpec spec{
+      schema::report,
+      1,
+      "The report of a finished run (fsi-report): per [[report.compare]] entry the error "
+      "metrics of a probe column against a reference curve. Root attribute comparison_labels "
+      "(`<column> vs <label>`, separated by newlines). The plots (PNG), metrics.json and "
+      "metrics.md are written beside it.",
+      {
+          {"/comparisons/metrics",
+           DType::f64,
+           {"n_comparisons", "n_metrics"},
+           "column",
+           "per comparison: computed peak, its time [s], reference peak, its time [s], relative "
+           "peak error, time-of-peak error [s], RMS difference, RMS / |reference peak|, window "
+           "start [s], window end [s] (peaks are the values of largest magnitude; units of the "
+           "probe column)"},
+      }};
+  return spec;
+}
+
 const SchemaSpec& checkpoint_schema() {
   auto f64 = [](const char* path, std::vector<std::string> shape, const char* unit, const char* doc,
                 bool required = true) {
@@ -449,8 +470,8 @@ const SchemaSpec& checkpoint_schema() {
 }
 
 std::vector<const SchemaSpec*> all_schemas() {
-  return {&mesh_schema(), &modes_schema(), &mapped_modes_schema(), &results_schema(),
-          &checkpoint_schema()};
+  return {&mesh_schema(),    &modes_schema(),      &mapped_modes_schema(),
+          &results_schema(), &checkpoint_schema(), &report_schema()};
 }
 
 const SchemaSpec* find_schema(std::string_view name) {

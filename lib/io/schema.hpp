@@ -56,6 +56,7 @@ inline constexpr const char* modes = "hydromodal.modes";
 inline constexpr const char* mapped_modes = "hydromodal.mapped_modes";
 inline constexpr const char* results = "hydromodal.results";
 inline constexpr const char* checkpoint = "hydromodal.checkpoint";
+inline constexpr const char* report = "hydromodal.report";
 }  // namespace schema
 
 namespace ds {
@@ -166,6 +167,7 @@ const SchemaSpec& checkpoint_schema();
 const SchemaSpec& modes_schema();
 const SchemaSpec& mapped_modes_schema();
 const SchemaSpec& results_schema();
+const SchemaSpec& report_schema();
 /// Every schema hydromodal writes (for fsi-inspect and the generated reference).
 std::vector<const SchemaSpec*> all_schemas();
 const SchemaSpec* find_schema(std::string_view name);

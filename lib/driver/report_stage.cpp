@@ -1,0 +1,408 @@
+#include "driver/report_stage.hpp"
+
+#include <unistd.h>
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <numeric>
+#include <sstream>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "core/errors.hpp"
+#include "core/log.hpp"
+#include "core/text.hpp"
+#include "io/artefact.hpp"
+#include "io/schema.hpp"
+
+namespace hm::driver {
+namespace {
+
+constexpr const char* stage_name = "fsi-report";
+namespace ds = io::ds;
+namespace ra = io::results_attr;
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  return parts;
+}
+
+std::string trim(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t\r\n");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t\r\n") - a + 1);
+}
+
+bool parse_double(const std::string& s, double& value) {
+  const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
+  return error == std::errc() && end == s.data() + s.size() && std::isfinite(value);
+}
+
+double interpolate(const Curve& c, double t) {
+  const auto it = std::lower_bound(c.t.begin(), c.t.end(), t);
+  if (it == c.t.begin()) return c.v.front();
+  if (it == c.t.end()) return c.v.back();
+  const auto k = static_cast<std::size_t>(it - c.t.begin());
+  const double w = (t - c.t[k - 1]) / (c.t[k] - c.t[k - 1]);
+  return (1 - w) * c.v[k - 1] + w * c.v[k];
+}
+
+/// The sample of largest magnitude in [a, b]: (value, time).
+std::pair<double, double> peak_in(const Curve& c, double a, double b) {
+  std::pair<double, double> best{0.0, std::numeric_limits<double>::quiet_NaN()};
+  for (std::size_t k = 0; k < c.t.size(); ++k)
+    if (c.t[k] >= a && c.t[k] <= b &&
+        (std::isnan(best.second) || std::abs(c.v[k]) > std::abs(best.first)))
+      best = {c.v[k], c.t[k]};
+  return best;
+}
+
+/// One [[report.compare]] entry resolved.
+struct Comparison {
+  std::string column, label;
+  std::filesystem::path file;
+  Curve reference;
+};
+
+std::string file_stem_of(const std::string& column) {
+  std::string out;
+  for (const char ch : column) {
+    if (std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_')
+      out += ch;
+    else if (!out.empty() && out.back() != '_')
+      out += '_';
+  }
+  while (!out.empty() && (out.back() == '_' || out.back() == '.')) out.pop_back();
+  return out;
+}
+
+void write_dat(const std::filesystem::path& file, const Curve& c) {
+  std::ofstream out(file);
+  out.precision(17);
+  for (std::size_t k = 0; k < c.t.size(); ++k) out << c.t[k] << ' ' << c.v[k] << '\n';
+  if (!out) input_error("{}: cannot write", file.string());
+}
+
+std::string quoted(const std::string& s) {
+  std::string out = "'";
+  for (const char ch : s) out += ch == '\'' ? std::string("''") : std::string(1, ch);
+  return out + "'";
+}
+
+/// Runs gnuplot on `script` in `folder`; InputError when it is missing or fails.
+void run_gnuplot(const std::filesystem::path& folder, const std::string& script) {
+  const auto file = folder / "plots.gp";
+  {
+    std::ofstream out(file);
+    out << script;
+  }
+  const std::string command =
+      fmt::format("cd '{}' && gnuplot plots.gp > gnuplot.log 2>&1", folder.string());
+  const int status = std::system(command.c_str());
+  if (status != 0)
+    input_error(
+        "{}: gnuplot failed (exit status {}) on {}; see {} (is gnuplot installed? "
+        "Debian: gnuplot-nox)",
+        stage_name, status, file.string(), (folder / "gnuplot.log").string());
+}
+
+std::string plot_header(const std::string& png, const std::string& title, const std::string& y) {
+  return fmt::format(
+      "set terminal pngcairo size 960,560 font ',10'\nset output {}\nset title {}\nset grid\n"
+      "set key top left\nset xlabel 't [s]'\nset ylabel {}\n",
+      quoted(png), quoted(title), quoted(y));
+}
+
+struct RunData {
+  std::vector<std::string> columns;
+  std::vector<Curve> probes;  ///< per column
+  Curve dt, ppe_iterations, volume_drift;
+  std::vector<double> modal_time;
+  io::MatrixRM modal;  ///< n_rows × n_modes (empty: no structure)
+};
+
+RunData read_run(const std::filesystem::path& results) {
+  const io::ArtefactReader r(results, io::results_schema());
+  RunData d;
+  if (r.has(ds::probe_time)) {
+    d.columns = split(r.string_attribute(ra::probe_columns).value_or(""), ',');
+    const std::vector<double> t = r.read_values(ds::probe_time);
+    const io::MatrixRM values = r.read_matrix(ds::probe_values);
+    for (Eigen::Index c = 0; c < values.cols(); ++c) {
+      Curve curve;
+      curve.t = t;
+      for (Eigen::Index k = 0; k < values.rows(); ++k) curve.v.push_back(values(k, c));
+      d.probes.push_back(std::move(curve));
+    }
+    if (d.columns.size() != d.probes.size())
+      input_error("{}: {} probe column names for {} columns", results.string(), d.columns.size(),
+                  d.probes.size());
+  }
+  if (r.has(ds::monitor_time)) {
+    const std::vector<double> t = r.read_values(ds::monitor_time);
+    d.dt = {t, r.read_values(ds::monitor_dt)};
+    d.ppe_iterations = {t, r.read_values(ds::monitor_ppe_iterations)};
+    d.volume_drift = {t, r.read_values(ds::monitor_volume_drift)};
+  }
+  if (r.has(ds::modal_time)) {
+    d.modal_time = r.read_values(ds::modal_time);
+    d.modal = r.read_matrix(ds::modal_coordinates);
+  }
+  return d;
+}
+
+std::vector<Comparison> comparisons(const io::Scene& scene, const RunData& run) {
+  std::vector<Comparison> out;
+  for (const io::SceneView& view : scene.array("report.compare")) {
+    Comparison c;
+    c.column = view.string("column");
+    if (std::find(run.columns.begin(), run.columns.end(), c.column) == run.columns.end())
+      input_error("{} = \"{}\": no such probe column in the run (columns: {})",
+                  view.where("column"), c.column, join(run.columns, ", "));
+    c.file = view.file_path("file");
+    c.label = view.string("label").empty() ? c.file.stem().string() : view.string("label");
+    c.reference = read_reference_csv(c.file, static_cast<int>(view.integer("time_column")),
+                                     static_cast<int>(view.integer("value_column")),
+                                     view.number("scale"), view.number("time_offset"));
+    out.push_back(std::move(c));
+  }
+  return out;
+}
+
+std::string metrics_markdown(const std::vector<Comparison>& cs,
+                             const std::vector<CurveMetrics>& ms) {
+  std::string md =
+      "| probe | reference | peak | reference peak | peak error | at | reference at | Δt of peak "
+      "| RMS | RMS / \\|ref. peak\\| | window |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    const auto& m = ms[k];
+    md += fmt::format(
+        "| `{}` | {} | {:.4g} | {:.4g} | {:+.1f} % | {:.4g} s | {:.4g} s | {:+.4f} s | {:.3g} | "
+        "{:.1f} % | {:.3g}–{:.3g} s |\n",
+        cs[k].column, cs[k].label, m.peak, m.reference_peak, 100 * m.peak_error, m.peak_time,
+        m.reference_peak_time, m.peak_time_error, m.rms, 100 * m.rms_relative, m.window_start,
+        m.window_end);
+  }
+  return md;
+}
+
+nlohmann::ordered_json metrics_json(const std::vector<Comparison>& cs,
+                                    const std::vector<CurveMetrics>& ms) {
+  nlohmann::ordered_json j = nlohmann::ordered_json::array();
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    const auto& m = ms[k];
+    j.push_back({{"column", cs[k].column},
+                 {"reference", cs[k].label},
+                 {"reference_file", cs[k].file.string()},
+                 {"peak", m.peak},
+                 {"peak_time_s", m.peak_time},
+                 {"reference_peak", m.reference_peak},
+                 {"reference_peak_time_s", m.reference_peak_time},
+                 {"peak_error", m.peak_error},
+                 {"peak_time_error_s", m.peak_time_error},
+                 {"rms", m.rms},
+                 {"rms_relative", m.rms_relative},
+                 {"window_s", {m.window_start, m.window_end}},
+                 {"reference_samples", m.samples}});
+  }
+  return j;
+}
+
+/// The plots' gnuplot script; data files go to data/.
+std::string plot_script(const std::filesystem::path& folder, const RunData& run,
+                        const std::vector<Comparison>& cs) {
+  std::filesystem::create_directories(folder / "data");
+  std::string script;
+  for (std::size_t c = 0; c < run.columns.size(); ++c) {
+    const std::string stem = file_stem_of(run.columns[c]);
+    write_dat(folder / "data" / (stem + ".dat"), run.probes[c]);
+    std::vector<std::string> series{fmt::format("{} using 1:2 with lines lw 2 title 'hydromodal'",
+                                                quoted("data/" + stem + ".dat"))};
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+      if (cs[k].column != run.columns[c]) continue;
+      const std::string ref = fmt::format("data/{}.ref{}.dat", stem, k);
+      write_dat(folder / ref, cs[k].reference);
+      series.push_back(fmt::format("{} using 1:2 with linespoints pt 7 ps 0.5 title {}",
+                                   quoted(ref), quoted(cs[k].label)));
+    }
+    script += plot_header(stem + ".png", run.columns[c], run.columns[c]);
+    script += "plot " + join(series, ", \\\n     ") + "\n";
+  }
+  if (run.modal.size() > 0) {
+    std::ofstream out(folder / "data" / "modal.dat");
+    out.precision(17);
+    for (Eigen::Index k = 0; k < run.modal.rows(); ++k) {
+      out << run.modal_time[static_cast<std::size_t>(k)];
+      for (Eigen::Index m = 0; m < run.modal.cols(); ++m) out << ' ' << run.modal(k, m);
+      out << '\n';
+    }
+    script += plot_header("structure.png", "structure: modal coordinates", "y [m·√kg]");
+    std::vector<std::string> series;
+    for (Eigen::Index m = 0; m < run.modal.cols(); ++m)
+      series.push_back(
+          fmt::format("'data/modal.dat' using 1:{} with lines title 'mode {}'", m + 2, m + 1));
+    script += "plot " + join(series, ", \\\n     ") + "\n";
+  }
+  if (!run.dt.t.empty()) {
+    write_dat(folder / "data" / "dt.dat", run.dt);
+    write_dat(folder / "data" / "ppe_iterations.dat", run.ppe_iterations);
+    write_dat(folder / "data" / "volume_drift.dat", run.volume_drift);
+    script +=
+        "set terminal pngcairo size 960,900 font ',10'\nset output 'monitors.png'\nunset title\n"
+        "set multiplot layout 3,1\nset grid\nunset key\nset xlabel 't [s]'\n"
+        "set ylabel 'Δt [s]'\nset logscale y\nplot 'data/dt.dat' using 1:2 with steps\n"
+        "unset logscale y\nset ylabel 'PPE iterations'\n"
+        "plot 'data/ppe_iterations.dat' using 1:2 with impulses\n"
+        "set ylabel 'volume drift [%]'\nplot 'data/volume_drift.dat' using 1:($2*100) with lines\n"
+        "unset multiplot\n";
+  }
+  return script;
+}
+
+}  // namespace
+
+CurveMetrics compare_curves(const Curve& run, const Curve& reference, double window_start,
+                            double window_end, const std::string& context) {
+  if (run.t.empty() || reference.t.empty())
+    input_error("{}: an empty curve (run {} samples, reference {})", context, run.t.size(),
+                reference.t.size());
+  CurveMetrics m;
+  // The window, cut to where both curves exist (a reference longer than the run, or a shorter
+  // smoke run, is compared where they overlap).
+  m.window_start = std::max(
+      {run.t.front(), reference.t.front(), std::isnan(window_start) ? -HUGE_VAL : window_start});
+  m.window_end =
+      std::min({run.t.back(), reference.t.back(), std::isnan(window_end) ? HUGE_VAL : window_end});
+  if (!(m.window_end > m.window_start))
+    input_error("{}: the run ({}–{} s) and the reference ({}–{} s) do not overlap in the window",
+                context, run.t.front(), run.t.back(), reference.t.front(), reference.t.back());
+  const auto [p, tp] = peak_in(run, m.window_start, m.window_end);
+  const auto [q, tq] = peak_in(reference, m.window_start, m.window_end);
+  if (std::isnan(tq) || std::isnan(tp))
+    input_error("{}: no sample of the run or the reference in {}–{} s", context, m.window_start,
+                m.window_end);
+  m.peak = p;
+  m.peak_time = tp;
+  m.reference_peak = q;
+  m.reference_peak_time = tq;
+  m.peak_error = q != 0.0 ? (p - q) / std::abs(q) : std::numeric_limits<double>::quiet_NaN();
+  m.peak_time_error = tp - tq;
+  double sum = 0.0;
+  for (std::size_t k = 0; k < reference.t.size(); ++k) {
+    if (reference.t[k] < m.window_start || reference.t[k] > m.window_end) continue;
+    const double d = interpolate(run, reference.t[k]) - reference.v[k];
+    sum += d * d;
+    ++m.samples;
+  }
+  m.rms = std::sqrt(sum / m.samples);
+  m.rms_relative = q != 0.0 ? m.rms / std::abs(q) : std::numeric_limits<double>::quiet_NaN();
+  return m;
+}
+
+Curve read_reference_csv(const std::filesystem::path& file, int time_column, int value_column,
+                         double scale, double time_offset) {
+  std::ifstream in(file);
+  if (!in) input_error("reference file '{}' cannot be read", file.string());
+  std::string line;
+  std::vector<std::pair<double, double>> rows;
+  for (int number = 1; std::getline(in, line); ++number) {
+    if (number == 1 || trim(line).empty()) continue;  // the header
+    const std::vector<std::string> fields = split(line, ',');
+    const auto need = static_cast<std::size_t>(std::max(time_column, value_column));
+    double t = 0, v = 0;
+    if (fields.size() <= need || !parse_double(trim(fields[time_column]), t) ||
+        !parse_double(trim(fields[value_column]), v))
+      input_error("{}:{}: expected numbers in columns {} and {} (0-based), got '{}'", file.string(),
+                  number, time_column, value_column, line);
+    rows.emplace_back(t + time_offset, scale * v);
+  }
+  if (rows.empty()) input_error("reference file '{}' holds no data row", file.string());
+  std::stable_sort(rows.begin(), rows.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  Curve c;
+  for (const auto& [t, v] : rows) {
+    c.t.push_back(t);
+    c.v.push_back(v);
+  }
+  return c;
+}
+
+void validate_report_scene(const io::Scene& scene) {
+  for (const io::SceneView& view : scene.array("report.compare"))
+    if (!std::filesystem::exists(view.file_path("file")))
+      input_error("{}: reference file '{}' does not exist", view.where("file"),
+                  view.file_path("file").string());
+  const Eigen::VectorXd window = scene.vector("report.window");
+  if (window.size() != 0 && (window.size() != 2 || !(window[1] > window[0])))
+    input_error("{}: give [t0, t1] with t1 > t0 (s), or leave it empty",
+                scene.where("report.window"));
+}
+
+void run_report_stage(const io::Scene& scene, const std::filesystem::path& results,
+                      const std::filesystem::path& output) {
+  validate_report_scene(scene);
+  const RunData run = read_run(results);
+  const std::vector<Comparison> cs = comparisons(scene, run);
+  const Eigen::VectorXd window = scene.vector("report.window");
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  std::vector<CurveMetrics> ms;
+  for (const Comparison& c : cs) {
+    const auto column = static_cast<std::size_t>(
+        std::find(run.columns.begin(), run.columns.end(), c.column) - run.columns.begin());
+    ms.push_back(compare_curves(run.probes[column], c.reference,
+                                window.size() == 2 ? window[0] : nan,
+                                window.size() == 2 ? window[1] : nan,
+                                fmt::format("{} against {}", c.column, c.file.string())));
+  }
+
+  // Everything is written into a fresh folder beside the report's and renamed over it.
+  const std::filesystem::path folder = output.parent_path().empty() ? "." : output.parent_path();
+  const std::filesystem::path staging =
+      folder.parent_path() / fmt::format(".{}.tmp-{}", folder.filename().string(), ::getpid());
+  std::filesystem::remove_all(staging);
+  std::filesystem::create_directories(staging);
+  try {
+    run_gnuplot(staging, plot_script(staging, run, cs));
+    {
+      std::ofstream json(staging / "metrics.json");
+      json << metrics_json(cs, ms).dump(2) << '\n';
+      std::ofstream md(staging / "metrics.md");
+      md << "# " << scene.string("case.name") << ": error against the references\n\n"
+         << metrics_markdown(cs, ms);
+    }
+    std::vector<io::InputRecord> records{io::input_record("results", results)};
+    for (std::size_t k = 0; k < cs.size(); ++k)
+      records.push_back(io::input_record(fmt::format("reference_{}", k), cs[k].file));
+    io::ArtefactWriter w(staging / output.filename(), io::report_schema(), stage_name,
+                         scene.parameters_for(stage_name), records);
+    io::MatrixRM table(static_cast<Eigen::Index>(ms.size()), 10);
+    std::vector<std::string> labels;
+    for (std::size_t k = 0; k < ms.size(); ++k) {
+      const auto& m = ms[k];
+      table.row(static_cast<Eigen::Index>(k)) << m.peak, m.peak_time, m.reference_peak,
+          m.reference_peak_time, m.peak_error, m.peak_time_error, m.rms, m.rms_relative,
+          m.window_start, m.window_end;
+      labels.push_back(cs[k].column + " vs " + cs[k].label);
+    }
+    if (table.rows() > 0) w.write("/comparisons/metrics", table);
+    w.set_attribute("comparison_labels", join(labels, "\n"));
+    w.commit();
+  } catch (...) {
+    std::filesystem::remove_all(staging);
+    throw;
+  }
+  std::filesystem::remove_all(folder);
+  std::filesystem::rename(staging, folder);
+  spdlog::info("{}: {} plot(s) and {} comparison(s) in {}:\n{}", stage_name,
+               run.columns.size() + (run.modal.size() > 0) + !run.dt.t.empty(), cs.size(),
+               folder.string(), metrics_markdown(cs, ms));
+}
+
+}  // namespace hm::driver
