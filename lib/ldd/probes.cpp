@@ -162,10 +162,10 @@ struct ElementLoad {
   double wetted = 0.0;
 };
 
-template <int D>
-ElementLoad<D> element_load(const PointSet<D>& points, std::span<const double> pressure,
-                            const WallMesh<D>& wall, const WallNodeGrid<D>& grid, Index e,
-                            double dx) {
+/// One element's share of a load whose traction at a quadrature point x (barycentrics b) on the
+/// side with normal `side` is traction(b, x, side, weight); weight > 0 marks the point wet.
+template <int D, typename Traction>
+ElementLoad<D> element_load(const WallMesh<D>& wall, Index e, double dx, Traction&& traction) {
   const auto& cell = wall.element(e);
   std::array<Vec<D>, D> x;
   for (int k = 0; k < D; ++k) x[k] = wall.vertices()[cell[k]];
@@ -176,15 +176,13 @@ ElementLoad<D> element_load(const PointSet<D>& points, std::span<const double> p
   for (const auto& q : element_quadrature(x, dx)) {
     Vec<D> xq = Vec<D>::Zero();
     for (int k = 0; k < D; ++k) xq += q.barycentric[k] * x[k];
-    Vec<D> traction = Vec<D>::Zero();
+    Vec<D> t = Vec<D>::Zero();
     for (int s = 0; s < sides; ++s) {
-      const Vec<D> side = s == 0 ? n : Vec<D>(-n);
       double weight = 0.0;
-      const double p = shepard_wall_pressure(points, pressure, grid, xq, side, dx, weight);
-      traction -= p * side;
+      t += traction(q.barycentric, xq, s == 0 ? n : Vec<D>(-n), weight);
       if (weight > 0.0) load.wetted += q.measure;
     }
-    for (int k = 0; k < D; ++k) load.vertex_force[k] += (q.measure * q.barycentric[k]) * traction;
+    for (int k = 0; k < D; ++k) load.vertex_force[k] += (q.measure * q.barycentric[k]) * t;
   }
   return load;
 }
@@ -208,29 +206,6 @@ Vec<D> shepard_wall_shear(const PointSet<D>& points, const WallNodeGrid<D>& flui
   });
   weight = sum_w;
   return sum_w > 0.0 ? Vec<D>(mu * sum / sum_w) : Vec<D>::Zero();
-}
-
-template <int D>
-ElementLoad<D> element_shear(const PointSet<D>& points, const WallMesh<D>& wall,
-                             const WallNodeGrid<D>& fluid, Index e, double dx, double mu) {
-  const auto& cell = wall.element(e);
-  std::array<Vec<D>, D> x;
-  for (int k = 0; k < D; ++k) x[k] = wall.vertices()[cell[k]];
-  const Vec<D> n = wall.normal_at(e, Vec<D>::Constant(1.0 / D));
-  ElementLoad<D> load;
-  load.vertex_force.fill(Vec<D>::Zero());
-  const int sides = wall.thin() ? 2 : 1;
-  for (const auto& q : element_quadrature(x, dx)) {
-    const Vec<D> xq = wall.point_at(e, q.barycentric), U = wall.velocity_at(e, q.barycentric);
-    Vec<D> traction = Vec<D>::Zero();
-    for (int s = 0; s < sides; ++s) {
-      double weight = 0.0;
-      traction += shepard_wall_shear(points, fluid, xq, U, s == 0 ? n : Vec<D>(-n), dx, mu, weight);
-      if (weight > 0.0) load.wetted += q.measure;
-    }
-    for (int k = 0; k < D; ++k) load.vertex_force[k] += (q.measure * q.barycentric[k]) * traction;
-  }
-  return load;
 }
 
 /// Sums per-element loads in element order (deterministic: Σ vertex_force == total bit for bit).
@@ -329,7 +304,11 @@ WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& w
   std::vector<ElementLoad<D>> per_element(static_cast<std::size_t>(elements));
 #pragma omp parallel for schedule(dynamic, 16)
   for (Index e = 0; e < elements; ++e)
-    per_element[e] = element_load(points, pressure, wall, grid, e, dx);
+    per_element[e] = element_load(
+        wall, e, dx, [&](const Vec<D>&, const Vec<D>& x, const Vec<D>& side, double& weight) {
+          // The fluid pushes the wall away from itself: −p n, n into the fluid.
+          return Vec<D>(-shepard_wall_pressure(points, pressure, grid, x, side, dx, weight) * side);
+        });
   return assemble_loads(wall, per_element);
 }
 
@@ -345,7 +324,11 @@ WallLoads<D> wall_viscous_loads(const PointSet<D>& points, const WallMesh<D>& wa
   std::vector<ElementLoad<D>> per_element(static_cast<std::size_t>(elements));
 #pragma omp parallel for schedule(dynamic, 16)
   for (Index e = 0; e < elements; ++e)
-    per_element[e] = element_shear(points, wall, fluid, e, dx, dynamic_viscosity);
+    per_element[e] = element_load(
+        wall, e, dx, [&](const Vec<D>& b, const Vec<D>& x, const Vec<D>& side, double& weight) {
+          return shepard_wall_shear(points, fluid, x, wall.velocity_at(e, b), side, dx,
+                                    dynamic_viscosity, weight);
+        });
   return assemble_loads(wall, per_element);
 }
 

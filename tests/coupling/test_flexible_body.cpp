@@ -15,6 +15,7 @@
 #include "coupling/run.hpp"
 #include "motion/rigid_motion.hpp"
 #include "piston.hpp"
+#include "plate_rig.hpp"
 
 namespace hm::coupling {
 namespace {
@@ -111,35 +112,13 @@ TEST(FlexibleBody, StaticStartHoldsThePistonAtItsStaticOffset) {
 // the rigid translation Φ = e_x/√m (Γ = √m e_x): relative to the tank it obeys
 // ü + ω²u = −Ẍ = Aω_b² sin ω_b t from rest, u = Aω_b²/(ω² − ω_b²) (sin ω_b t − (ω_b/ω) sin ωt).
 TEST(FlexibleBody, BaseExcitationOfABodyOnASwayingTank) {
-  const double dx = 0.01, A = 0.005, period = 1.0, mass = 2.0, omega = 2 * std::numbers::pi * 3;
-  mesh::WallOptions wo;
-  wo.dim = 2;
-  wo.size = 4 * dx;
-  wo.faces = {"xmin", "xmax", "ymin"};
-  const auto tank =
-      mesh::mesh_rectangle_walls({Eigen::Vector2d::Zero(), Eigen::Vector2d(0.4, 0.3)}, wo);
-  mesh::SurfaceMesh plate;
-  plate.dim = 2;
-  plate.vertices.resize(3, 2);
-  plate.vertices << 0.2, 0.15, 0.2, 0.2, 0.2, 0.25;
-  plate.cells.resize(2, 2);
-  plate.cells << 0, 1, 1, 2;
-  std::vector<ldd::WallMesh<2>> walls;
-  walls.emplace_back(tank, "tank");
-  walls.emplace_back(plate, "plate");
-  ldd::FlowOptions<2> fo;
-  fo.dx = dx;
-  fo.gravity = Vec<2>(0, -g);
-  const auto x = ldd::seed_box<2>({Vec<2>::Zero(), Vec<2>(0.4, 0.05)}, dx, walls);
-  ldd::FlowSolver<2> flow(std::move(walls), x, {}, fo);
-  ModalSurface<2> modes;
-  for (int k = 0; k < 3; ++k) modes.x0.push_back(plate.vertices.row(k).transpose());
-  modes.shapes = Eigen::MatrixXd::Zero(6, 1);
-  for (int k = 0; k < 3; ++k) modes.shapes(2 * k, 0) = 1 / std::sqrt(mass);
-  modes.omega = Eigen::VectorXd::Constant(1, omega);
-  modes.zeta = Eigen::VectorXd::Zero(1);
-  modes.participation = Eigen::MatrixXd::Zero(1, 2);
-  modes.participation(0, 0) = std::sqrt(mass);
+  const double A = 0.005, period = 1.0, mass = 2.0, omega = 2 * std::numbers::pi * 3;
+  Eigen::Matrix<double, 3, 2> vertical;
+  vertical << 0.2, 0.15, 0.2, 0.2, 0.2, 0.25;
+  PlateRig rig = plate_rig(vertical, 0.3);
+  ldd::FlowSolver<2>& flow = *rig.flow;
+  const mesh::SurfaceMesh &tank = rig.tank, &plate = rig.plate;
+  ModalSurface<2> modes = sliding_mode(plate, mass, omega);
   const auto sway = motion::sway_motion(2, Eigen::Vector3d::UnitX(), A, period);
   std::vector<FlexibleBody<2>> bodies;
   bodies.emplace_back("plate", std::move(modes), 1, CouplingOptions{}, flow.walls()[1]);
@@ -167,36 +146,14 @@ TEST(FlexibleBody, BaseExcitationOfABodyOnASwayingTank) {
 // grid. The mode set's rotational participation is given about the origin, not the pivot: the
 // body must shift it (Γ_rot(c) = Γ_rot(q) + Γ·(e_z × (q − c))).
 TEST(FlexibleBody, BodyOnARollingTankFollowsTheTankFrameEquation) {
-  const double dx = 0.01, theta0 = 0.05, f = 1.0, mass = 2.0, omega = 2 * std::numbers::pi * 3;
+  const double theta0 = 0.05, f = 1.0, mass = 2.0, omega = 2 * std::numbers::pi * 3;
   const Eigen::Vector3d pivot(0.2, 0.05, 0.0);
-  mesh::WallOptions wo;
-  wo.dim = 2;
-  wo.size = 4 * dx;
-  wo.faces = {"xmin", "xmax", "ymin"};
-  const auto tank =
-      mesh::mesh_rectangle_walls({Eigen::Vector2d::Zero(), Eigen::Vector2d(0.4, 0.3)}, wo);
-  mesh::SurfaceMesh plate;
-  plate.dim = 2;
-  plate.vertices.resize(3, 2);
-  plate.vertices << 0.2, 0.15, 0.2, 0.2, 0.2, 0.25;  // centre (0.2, 0.2): r = (0, 0.15)
-  plate.cells.resize(2, 2);
-  plate.cells << 0, 1, 1, 2;
-  std::vector<ldd::WallMesh<2>> walls;
-  walls.emplace_back(tank, "tank");
-  walls.emplace_back(plate, "plate");
-  ldd::FlowOptions<2> fo;
-  fo.dx = dx;
-  fo.gravity = Vec<2>(0, -g);
-  const auto x = ldd::seed_box<2>({Vec<2>::Zero(), Vec<2>(0.4, 0.05)}, dx, walls);
-  ldd::FlowSolver<2> flow(std::move(walls), x, {}, fo);
-  ModalSurface<2> modes;
-  for (int k = 0; k < 3; ++k) modes.x0.push_back(plate.vertices.row(k).transpose());
-  modes.shapes = Eigen::MatrixXd::Zero(6, 1);
-  for (int k = 0; k < 3; ++k) modes.shapes(2 * k, 0) = 1 / std::sqrt(mass);
-  modes.omega = Eigen::VectorXd::Constant(1, omega);
-  modes.zeta = Eigen::VectorXd::Zero(1);
-  modes.participation = Eigen::MatrixXd::Zero(1, 2);
-  modes.participation(0, 0) = std::sqrt(mass);
+  Eigen::Matrix<double, 3, 2> vertical;
+  vertical << 0.2, 0.15, 0.2, 0.2, 0.2, 0.25;  // centre (0.2, 0.2): r = (0, 0.15)
+  PlateRig rig = plate_rig(vertical, 0.3);
+  ldd::FlowSolver<2>& flow = *rig.flow;
+  const mesh::SurfaceMesh &tank = rig.tank, &plate = rig.plate;
+  ModalSurface<2> modes = sliding_mode(plate, mass, omega);
   // Φᵀ M (e_z × (x − q)) about q = 0: e_z × x = (−y, x), mass-weighted over the body: −√m·ȳ.
   modes.rotation_participation = Eigen::MatrixXd::Constant(1, 1, -std::sqrt(mass) * 0.2);
   const auto roll = motion::roll_motion(2, pivot, Eigen::Vector3d::UnitZ(), theta0, f);

@@ -13,6 +13,7 @@
 #include "coupling/run.hpp"
 #include "ldd/seeding.hpp"
 #include "mesh/wall_mesher.hpp"
+#include "plate_rig.hpp"
 
 namespace hm::coupling {
 namespace {
@@ -98,27 +99,12 @@ TEST(FreeTranslation, RefusesAClampedSetAndAnElasticModeWithMomentum) {
 // A plate dropped through the air above a water layer, at −1 m/s: the exact parabola, the fluid
 // untouched (strong coupling: the added-mass solves give zero in the air).
 TEST(FreeTranslation, FreeFallThroughAirIsExact) {
-  const double dx = 0.01, v0 = -1.0, end = 0.05;
-  mesh::WallOptions wo;
-  wo.dim = 2;
-  wo.size = 4 * dx;
-  wo.faces = {"xmin", "xmax", "ymin"};
-  const auto tank =
-      mesh::mesh_rectangle_walls({Eigen::Vector2d::Zero(), Eigen::Vector2d(0.4, 0.4)}, wo);
-  mesh::SurfaceMesh plate;
-  plate.dim = 2;
-  plate.vertices.resize(3, 2);
-  plate.vertices << 0.1, 0.25, 0.2, 0.25, 0.3, 0.25;
-  plate.cells.resize(2, 2);
-  plate.cells << 0, 1, 1, 2;
-  std::vector<ldd::WallMesh<2>> walls;
-  walls.emplace_back(tank, "tank");
-  walls.emplace_back(plate, "plate");
-  ldd::FlowOptions<2> fo;
-  fo.dx = dx;
-  fo.gravity = Vec<2>(0, -g);
-  const auto x = ldd::seed_box<2>({Vec<2>::Zero(), Vec<2>(0.4, 0.05)}, dx, walls);
-  ldd::FlowSolver<2> flow(std::move(walls), x, {}, fo);
+  const double v0 = -1.0, end = 0.05;
+  Eigen::Matrix<double, 3, 2> level;
+  level << 0.1, 0.25, 0.2, 0.25, 0.3, 0.25;
+  test::PlateRig rig = test::plate_rig(level, 0.4);
+  ldd::FlowSolver<2>& flow = *rig.flow;
+  const mesh::SurfaceMesh &tank = rig.tank, &plate = rig.plate;
   SquareBody b = square_body(true);  // its modes on the plate's three vertices
   ModalSurface<2> modes;
   for (int k = 0; k < 3; ++k) modes.x0.push_back(plate.vertices.row(k).transpose());

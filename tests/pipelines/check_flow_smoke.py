@@ -355,6 +355,34 @@ def cantilever_plate_f1(scene):
     return f, f / math.sqrt(1 - nu * nu)
 
 
+def check_dry_f1(c, scene, out, build):
+    """The mode count asked for, and the dry f1 in the bracket of the clamped-free beam (E) and
+    plate (E/(1 − ν²)) estimates, 3 % margin each side (a strip b/t = 24, b/L = 0.8, or a plane-
+    strain beam: neither estimate is exact)."""
+    frequencies = inspect(build, out / "modes.h5")["frequencies_hz"]
+    c.expect(len(frequencies) == scene["modes"]["count"],
+             f"{len(frequencies)} modes (scene: {scene['modes']['count']})")
+    beam, plate = cantilever_plate_f1(scene)
+    c.expect(0.97 * beam <= frequencies[0] <= 1.03 * plate,
+             f"dry f1 = {frequencies[0]:.3f} Hz within [0.97·{beam:.3f}, 1.03·{plate:.3f}] Hz "
+             f"(Euler–Bernoulli with E, with E/(1 − ν²); {100 * (frequencies[0] / beam - 1):+.1f} % "
+             f"/ {100 * (frequencies[0] / plate - 1):+.1f} %)")
+
+
+def check_hydrostatic_probe(c, scene, probes, name):
+    """The pressure probe `name` at t = 0 (fluid at rest) within 10 % of ρg·depth below the still
+    surface of the first region (the probe averages over a sphere cut by the floor or surface)."""
+    region = scene["fluid"]["region"][0]
+    probe = next(p for p in scene["probe"] if p["name"] == name)
+    up = scene["case"]["dimension"] - 1
+    depth = region["origin"][up] + region["size"][up] - probe["position"][up]
+    expected = scene["fluid"]["density"] * GRAVITY * depth
+    p0 = probes[f"{name}.p [Pa]"][0]
+    c.expect(abs(p0 / expected - 1) < 0.10,
+             f"{name} at t = {probes['t [s]'][0]} s: {p0:.0f} Pa against ρg·d = {expected:.0f} Pa "
+             f"({100 * (p0 / expected - 1):+.1f} %) within 10 %")
+
+
 def sloshing_baffle(c, scene, out, source, build):
     """Completed; coupling converged; volume kept; the dry first mode against the cantilever
     strip; the hydrostatic pressure at t = 0; D1 moved, and stayed within the linear range."""
@@ -364,26 +392,9 @@ def sloshing_baffle(c, scene, out, source, build):
     results = out / "results.h5"
     escaped = dataset(build, results, "/monitors/escaped")[-1]
     c.expect(escaped == 0, f"{escaped:.0f} points escaped the tank (expected 0)")
-    # Dry modes: the count asked for, and f1 in the bracket of the beam (E) and plate
-    # (E/(1 − ν²)) estimates, 3 % margin each side (b/t = 24, b/L = 0.8: neither is exact).
-    frequencies = inspect(build, out / "modes.h5")["frequencies_hz"]
-    c.expect(len(frequencies) == scene["modes"]["count"],
-             f"{len(frequencies)} modes (scene: {scene['modes']['count']})")
-    beam, plate = cantilever_plate_f1(scene)
-    c.expect(0.97 * beam <= frequencies[0] <= 1.03 * plate,
-             f"dry f1 = {frequencies[0]:.3f} Hz within [0.97·{beam:.3f}, 1.03·{plate:.3f}] Hz "
-             f"(Euler–Bernoulli with E, with E/(1 − ν²); {100 * (frequencies[0] / beam - 1):+.1f} % "
-             f"/ {100 * (frequencies[0] / plate - 1):+.1f} %)")
-    # Hydrostatic pressure at the first probe row (t = 0, water at rest): ρg·depth below the
-    # still surface; the probe averages over a sphere of radius h = 2.5 dx, so 10 %.
+    check_dry_f1(c, scene, out, build)
     probes = read_probes(out)
-    region = scene["fluid"]["region"][0]
-    probe = next(p for p in scene["probe"] if p["name"] == "p_floor")
-    expected = scene["fluid"]["density"] * GRAVITY * (region["size"][2] - probe["position"][2])
-    p0 = probes["p_floor.p [Pa]"][0]
-    c.expect(abs(p0 / expected - 1) < 0.10,
-             f"p_floor at t = {probes['t [s]'][0]} s: {p0:.0f} Pa against ρg·d = {expected:.0f} Pa "
-             f"({100 * (p0 / expected - 1):+.1f} %) within 10 %")
+    check_hydrostatic_probe(c, scene, probes, "p_floor")
     # D1 (the baffle's top corner): it moves (the tank's acceleration alone bends the dry baffle
     # quasi-statically by ρ_s t Aω² L⁴/(8EI)), and stays bounded below the baffle's height. At
     # the paper's E = 38.4 MPa the water bends it beyond the linear range (11 % of the height at
@@ -488,19 +499,9 @@ def oil_beam_rolling_tank(c, scene, out, source, build):
     drift = check_run(c, scene, out, build)
     check_coupling(c, out, build)
     c.expect(drift < 0.03, f"max |volume drift| {100 * drift:.3f} % < 3 %")
-    frequencies = inspect(build, out / "modes.h5")["frequencies_hz"]
-    beam, plate = cantilever_plate_f1(scene)
-    c.expect(0.97 * beam <= frequencies[0] <= 1.03 * plate,
-             f"dry f1 = {frequencies[0]:.3f} Hz within [0.97·{beam:.3f}, 1.03·{plate:.3f}] Hz "
-             f"(Euler–Bernoulli with E, with E/(1 − ν²))")
+    check_dry_f1(c, scene, out, build)
     probes = read_probes(out)
-    region = scene["fluid"]["region"][0]
-    probe = next(p for p in scene["probe"] if p["name"] == "p_floor")
-    expected = scene["fluid"]["density"] * GRAVITY * (region["size"][1] - probe["position"][1])
-    p0 = probes["p_floor.p [Pa]"][0]
-    c.expect(abs(p0 / expected - 1) < 0.10,
-             f"p_floor at t = {probes['t [s]'][0]} s: {p0:.0f} Pa against ρg·d = {expected:.0f} Pa "
-             f"({100 * (p0 / expected - 1):+.1f} %) within 10 %")
+    check_hydrostatic_probe(c, scene, probes, "p_floor")
     height = scene["structure"]["geometry"]["size"][1]
     peak = max(abs(u) for u in probes["tip.ux [m]"])
     c.expect(1e-5 < peak < height,
