@@ -158,9 +158,20 @@ RunData read_run(const std::filesystem::path& results) {
   return d;
 }
 
+/// report.window, empty without a [report] section (a scene without references still gets its
+/// plots).
+Eigen::VectorXd report_window(const io::Scene& scene) {
+  return scene.has("report") ? scene.vector("report.window") : Eigen::VectorXd();
+}
+
+/// The [[report.compare]] entries (none without a [report] section).
+std::vector<io::SceneView> compare_entries(const io::Scene& scene) {
+  return scene.has("report") ? scene.array("report.compare") : std::vector<io::SceneView>{};
+}
+
 std::vector<Comparison> comparisons(const io::Scene& scene, const RunData& run) {
   std::vector<Comparison> out;
-  for (const io::SceneView& view : scene.array("report.compare")) {
+  for (const io::SceneView& view : compare_entries(scene)) {
     Comparison c;
     c.column = view.string("column");
     if (std::find(run.columns.begin(), run.columns.end(), c.column) == run.columns.end())
@@ -335,11 +346,11 @@ Curve read_reference_csv(const std::filesystem::path& file, int time_column, int
 }
 
 void validate_report_scene(const io::Scene& scene) {
-  for (const io::SceneView& view : scene.array("report.compare"))
+  for (const io::SceneView& view : compare_entries(scene))
     if (!std::filesystem::exists(view.file_path("file")))
       input_error("{}: reference file '{}' does not exist", view.where("file"),
                   view.file_path("file").string());
-  const Eigen::VectorXd window = scene.vector("report.window");
+  const Eigen::VectorXd window = report_window(scene);
   if (window.size() != 0 && (window.size() != 2 || !(window[1] > window[0])))
     input_error("{}: give [t0, t1] with t1 > t0 (s), or leave it empty",
                 scene.where("report.window"));
@@ -350,7 +361,7 @@ void run_report_stage(const io::Scene& scene, const std::filesystem::path& resul
   validate_report_scene(scene);
   const RunData run = read_run(results);
   const std::vector<Comparison> cs = comparisons(scene, run);
-  const Eigen::VectorXd window = scene.vector("report.window");
+  const Eigen::VectorXd window = report_window(scene);
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::vector<CurveMetrics> ms;
   for (const Comparison& c : cs) {
