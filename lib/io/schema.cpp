@@ -395,14 +395,14 @@ const SchemaSpec& report_schema() {
       "(`<column> vs <label>`, separated by newlines). The plots (PNG), metrics.json and "
       "metrics.md are written beside it.",
       {
-          {"/comparisons/metrics",
-           DType::f64,
-           {"n_comparisons", "n_metrics"},
-           "column",
-           "per comparison: computed peak, its time [s], reference peak, its time [s], relative "
-           "peak error, time-of-peak error [s], RMS difference, RMS / |reference peak|, window "
-           "start [s], window end [s] (peaks are the values of largest magnitude; units of the "
-           "probe column)"},
+          optional({"/comparisons/metrics",
+                    DType::f64,
+                    {"n_comparisons", "n_metrics"},
+                    "column",
+                    "per comparison (none: a report of plots only): computed peak, its time [s], "
+                    "reference peak, its time [s], relative peak error, time-of-peak error [s], "
+                    "RMS difference, RMS / |reference peak|, window start [s], window end [s] "
+                    "(peaks are the values of largest magnitude; units of the probe column)"}),
       }};
   return spec;
 }
