@@ -179,9 +179,10 @@ std::vector<Comparison> comparisons(const io::Scene& scene, const RunData& run) 
                   view.where("column"), c.column, join(run.columns, ", "));
     c.file = view.file_path("file");
     c.label = view.string("label").empty() ? c.file.stem().string() : view.string("label");
-    c.reference = read_reference_csv(c.file, static_cast<int>(view.integer("time_column")),
-                                     static_cast<int>(view.integer("value_column")),
-                                     view.number("scale"), view.number("time_offset"));
+    c.reference =
+        read_reference_csv(c.file, static_cast<int>(view.integer("time_column")),
+                           static_cast<int>(view.integer("value_column")), view.number("scale"),
+                           view.number("time_scale"), view.number("time_offset"));
     out.push_back(std::move(c));
   }
   return out;
@@ -318,7 +319,7 @@ CurveMetrics compare_curves(const Curve& run, const Curve& reference, double win
 }
 
 Curve read_reference_csv(const std::filesystem::path& file, int time_column, int value_column,
-                         double scale, double time_offset) {
+                         double scale, double time_scale, double time_offset) {
   std::ifstream in(file);
   if (!in) input_error("reference file '{}' cannot be read", file.string());
   std::string line;
@@ -332,7 +333,7 @@ Curve read_reference_csv(const std::filesystem::path& file, int time_column, int
         !parse_double(trim(fields[value_column]), v))
       input_error("{}:{}: expected numbers in columns {} and {} (0-based), got '{}'", file.string(),
                   number, time_column, value_column, line);
-    rows.emplace_back(t + time_offset, scale * v);
+    rows.emplace_back(time_scale * t + time_offset, scale * v);
   }
   if (rows.empty()) input_error("reference file '{}' holds no data row", file.string());
   std::stable_sort(rows.begin(), rows.end(),

@@ -41,10 +41,10 @@ CurveMetrics compare_curves(const Curve& run, const Curve& reference, double win
                             double window_end, const std::string& context);
 
 /// A reference CSV: a header line, then rows of numbers; columns `time_column`, `value_column`
-/// (0-based), value·scale, time + offset, sorted by time (digitised curves are not always in
-/// order). InputError naming the file and line on a malformed row.
+/// (0-based), value·scale, time·time_scale + time_offset, sorted by time (digitised curves are not
+/// always in order). InputError naming the file and line on a malformed row.
 Curve read_reference_csv(const std::filesystem::path& file, int time_column, int value_column,
-                         double scale, double time_offset);
+                         double scale, double time_scale, double time_offset);
 
 void validate_report_scene(const io::Scene& scene);
 

@@ -453,8 +453,13 @@ const std::vector<KeyDecl>& scene_keys() {
               "0-based column of the reference's value", report_stage),
       number("report.compare[].scale", "1.0", "1", -inf, inf,
              "factor from the reference's unit to the probe's SI unit", report_stage),
+      number("report.compare[].time_scale", "1.0", "s", 0, inf,
+             "factor from the reference's time unit to seconds (a dimensionless time T: "
+             "t = time_scale·T + time_offset)",
+             report_stage, true),
       number("report.compare[].time_offset", "0.0", "s", -inf, inf,
-             "added to the reference's times (a reference with another time origin)", report_stage),
+             "added to the reference's (scaled) times (a reference with another time origin)",
+             report_stage),
 
       // [map]
       text("map.target", "\"surface\"", {"surface", "file"},

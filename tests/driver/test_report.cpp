@@ -49,22 +49,22 @@ TEST(Report, ReferenceCsvIsSortedScaledAndShifted) {
     std::ofstream out(dir / "ref.csv");
     out << "time_s,value_mm,other\n0.2,20,0\n0.1,10,0\n\n0.3,30,0\n";
   }
-  const Curve c = read_reference_csv(dir / "ref.csv", 0, 1, 1e-3, 0.05);
+  const Curve c = read_reference_csv(dir / "ref.csv", 0, 1, 1e-3, 2.0, 0.05);
   ASSERT_EQ(c.t.size(), 3u);
-  EXPECT_DOUBLE_EQ(c.t[0], 0.15);
+  EXPECT_DOUBLE_EQ(c.t[0], 0.25);  // 2·0.1 + 0.05
   EXPECT_DOUBLE_EQ(c.v[0], 0.010);
-  EXPECT_DOUBLE_EQ(c.t[2], 0.35);
+  EXPECT_DOUBLE_EQ(c.t[2], 0.65);
   {
     std::ofstream out(dir / "bad.csv");
     out << "t,v\n0.1,1\n0.2,oops\n";
   }
   try {
-    read_reference_csv(dir / "bad.csv", 0, 1, 1.0, 0.0);
+    read_reference_csv(dir / "bad.csv", 0, 1, 1.0, 1.0, 0.0);
     FAIL() << "a malformed row must be an error";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("bad.csv:3"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(read_reference_csv(dir / "ref.csv", 0, 5, 1.0, 0.0), InputError);
+  EXPECT_THROW(read_reference_csv(dir / "ref.csv", 0, 5, 1.0, 1.0, 0.0), InputError);
 }
 
 }  // namespace
