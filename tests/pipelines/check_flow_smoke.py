@@ -509,13 +509,47 @@ def oil_beam_rolling_tank(c, scene, out, source, build):
              f"responds and stays bounded")
 
 
+def dambreak_cantilever(c, scene, out, source, build):
+    """The gate's strip standing on the floor under a dam break (paper §4.5): completed; coupling
+    converged; volume kept; the dry first mode against the cantilever; the surge bends the tip
+    downstream (> 1 mm) and it stays bounded (below the beam's length)."""
+    drift = check_run(c, scene, out, build)
+    check_coupling(c, out, build)
+    # A dam break of 560 points splashing over the beam: the bound of the K&O L/20 smoke run.
+    c.expect(drift < 0.05, f"max |volume drift| {100 * drift:.3f} % < 5 % (coarse dam break)")
+    check_dry_f1(c, scene, out, build)
+    probes = read_probes(out)
+    length = scene["structure"]["geometry"]["size"][1]
+    ux = probes["tip.ux [m]"]
+    c.expect(max(ux) > 1e-3, f"tip max ux {1000 * max(ux):.2f} mm > 1 mm (the surge bends it downstream)")
+    c.expect(max(abs(u) for u in ux) < length,
+             f"tip max |ux| {1000 * max(abs(u) for u in ux):.2f} mm < {1000 * length:.0f} mm")
+
+
+def rhee_sloshing(c, scene, out, source, build):
+    """Rhee's swayed tank (paper §4.1.1): completed; volume kept; no point escaped; at t = 0 the
+    floor probe P1 is hydrostatic and the tank carries the water's weight."""
+    drift = check_run(c, scene, out, build)
+    c.expect(drift < 0.03, f"max |volume drift| {100 * drift:.3f} % < 3 %")
+    escaped = dataset(build, out / "results.h5", "/monitors/escaped")[-1]
+    c.expect(escaped == 0, f"{escaped:.0f} points escaped the tank (expected 0)")
+    probes = read_probes(out)
+    check_hydrostatic_probe(c, scene, probes, "P1")
+    region = scene["fluid"]["region"][0]
+    weight = scene["fluid"]["density"] * GRAVITY * math.prod(region["size"])
+    fz = probes["tank.fz [N]"][0]
+    c.expect(abs(-fz / weight - 1) < 0.02,
+             f"tank fz at t = 0: {fz:.1f} N against −ρgV = {-weight:.1f} N within 2 %")
+
+
 def main():
     if len(sys.argv) != 6:
         sys.exit(__doc__)
     case, out, scene_file, source, build = sys.argv[1:]
     checks = {f.__name__: f for f in (dambreak_koshizuka, dambreak_lobovsky, sloshing_linear,
                                       sway_sloshing, elastic_gate, dambreak_elastic_plate,
-                                      sloshing_baffle, wedge_entry, oil_beam_rolling_tank)}
+                                      sloshing_baffle, wedge_entry, oil_beam_rolling_tank,
+                                      dambreak_cantilever, rhee_sloshing)}
     if case not in checks:
         sys.exit(f"check_flow_smoke.py: unknown case {case!r}; expected one of {sorted(checks)}")
     with open(scene_file, "rb") as f:
