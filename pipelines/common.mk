@@ -4,6 +4,10 @@
 #   make -C pipelines/<case> simulate   the flow: results.h5, probes.csv, snapshots/
 #   make -C pipelines/<case> report     plots and error tables of a finished run: report/
 #   make -C pipelines/<case> clean      remove this case's outputs
+#   make -C pipelines/<case> archive [NAME=tag]   keep modes.h5 in $(ARCHIVE) as <case>[-tag].modes.h5
+#   make -C pipelines/<case> archive-list         the archived mode sets: frequencies, provenance
+# A scene reuses an archived set with [modes] archived = "<path>": fsi-modes checks that it was
+# computed for the scene's fsi-modes keys and mesh and copies it instead of solving.
 # Outputs go to out/<case>/<variant>/ at the repository root. Each stage's command line is
 # printed as it runs, so it can be rerun by hand (drop --if-stale to force a rerun).
 #
@@ -75,6 +79,21 @@ report: $(OUT)/report/metrics.h5
 $(OUT)/report/metrics.h5: $(OUT)/results.h5 FORCE
 	$(FSI_REPORT) $(SCENE) --results $(OUT)/results.h5 -o $@ --if-stale
 	@cat $(OUT)/report/metrics.md
+
+# The mode archive (default: archive/modes/ at the repository root).
+ARCHIVE ?= $(ROOT)/archive/modes
+ARCHIVED := $(ARCHIVE)/$(CASE)$(if $(NAME),-$(NAME)).modes.h5
+.PHONY: archive archive-list
+archive: $(OUT)/modes.h5
+	@mkdir -p $(ARCHIVE)
+	cp $(OUT)/modes.h5 $(ARCHIVED).tmp && mv $(ARCHIVED).tmp $(ARCHIVED)
+	@echo "archived $(ARCHIVED); reuse it with [modes] archived = \"$(ARCHIVED)\""
+archive-list:
+	@for f in $(ARCHIVE)/*.modes.h5; do [ -e "$$f" ] || continue; \
+	  $(FSI_INSPECT) --json $$f | python3 -c 'import json, sys; d = json.load(sys.stdin); \
+	  a = d.get("attributes", d); \
+	  print(sys.argv[1], a.get("created_utc"), a.get("tool_version"), \
+	        "f [Hz] =", ", ".join(f"{f:.4g}" for f in d["frequencies_hz"]))' "$$f"; done
 
 FORCE:
 

@@ -1,6 +1,8 @@
 #include "driver/modes_stage.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <sstream>
 
 #include <fmt/format.h>
 
@@ -11,6 +13,7 @@
 #include "fem/assembly.hpp"
 #include "fem/dof_map.hpp"
 #include "io/artefact.hpp"
+#include "io/atomic_file.hpp"
 #include "io/xdmf.hpp"
 #include "modal/eigen_solve.hpp"
 #include "modal/modes.hpp"
@@ -202,6 +205,63 @@ void log_frequency_table(const modal::ModeSet& modes) {
                modes.solver.op_applications, table);
 }
 
+/// The canonical parameter lines of fsi-modes without modes.archived (which names the archive
+/// and so differs between the run that made a set and the runs that reuse it).
+std::vector<std::string> modes_parameter_lines(const std::string& parameters) {
+  std::vector<std::string> lines;
+  std::istringstream in(parameters);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty() && line.rfind("modes.archived", 0) != 0) lines.push_back(line);
+  return lines;
+}
+
+/// modes.archived: checks that the archived set was computed for this scene's fsi-modes keys and
+/// for this mesh's nodes, then copies it to `output` (atomically). InputError naming the
+/// difference otherwise.
+void reuse_archived_modes(const io::Scene& scene, const MeshArtefact& mesh,
+                          const std::filesystem::path& output) {
+  const std::filesystem::path archived = scene.file_path("modes.archived");
+  const std::string where = scene.where("modes.archived");
+  if (!std::filesystem::exists(archived))
+    input_error("{}: archived mode set '{}' does not exist", where, archived.string());
+  const io::ArtefactReader r(archived, io::modes_schema());
+  const auto was = modes_parameter_lines(r.provenance().parameters);
+  const auto now = modes_parameter_lines(scene.parameters_for("fsi-modes"));
+  std::vector<std::string> differences;
+  for (const std::string& line : now)
+    if (std::find(was.begin(), was.end(), line) == was.end())
+      differences.push_back("scene: " + line);
+  for (const std::string& line : was)
+    if (std::find(now.begin(), now.end(), line) == now.end())
+      differences.push_back("archived: " + line);
+  if (!differences.empty())
+    input_error(
+        "{}: the archived mode set '{}' was computed for other fsi-modes parameters (the "
+        "material, formulation or mode request changed); recompute it (remove "
+        "modes.archived) or archive a new one:\n  {}",
+        where, archived.string(), fmt::join(differences, "\n  "));
+  const io::MatrixRM nodes = r.read_matrix(ds::modes_nodes);
+  const auto& current = mesh.structure.nodes;
+  const double scale = std::max(1.0, current.cwiseAbs().maxCoeff());
+  if (nodes.rows() != current.rows() || nodes.cols() != current.cols() ||
+      (nodes - current).cwiseAbs().maxCoeff() > 1e-12 * scale)
+    input_error(
+        "{}: the archived mode set '{}' belongs to another geometry or mesh ({} nodes "
+        "there, {} in this mesh{}); recompute it or archive a new one",
+        where, archived.string(), nodes.rows(), current.rows(),
+        nodes.rows() == current.rows()
+            ? fmt::format(", largest node offset {:.3g} m", (nodes - current).cwiseAbs().maxCoeff())
+            : std::string());
+  io::AtomicOutput copy(output);
+  std::filesystem::copy_file(archived, copy.temp_path(),
+                             std::filesystem::copy_options::overwrite_existing);
+  copy.commit();
+  spdlog::info(
+      "fsi-modes: reused the archived mode set {} (computed {} by {}): {} matches this "
+      "scene's fsi-modes keys and mesh",
+      archived.string(), r.provenance().created_utc, r.provenance().tool_version, output.string());
+}
+
 }  // namespace
 
 void validate_modes_scene(const io::Scene& scene) {
@@ -219,6 +279,10 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
     input_error("'{}' holds a {}-D mesh but {} says case.dimension = {}; rerun fsi-mesh",
                 mesh_artefact.string(), mesh.structure.dim, scene.file().string(),
                 scene.dimension());
+  if (!scene.string("modes.archived").empty()) {
+    reuse_archived_modes(scene, mesh, output);
+    return;
+  }
 
   // Phases: assembly, eigensolver, checks and output (a bar on a terminal, lines in logs).
   Progress progress("fsi-modes", 3, "phases", spdlog::get_level() > spdlog::level::info);

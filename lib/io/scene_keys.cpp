@@ -408,6 +408,12 @@ const std::vector<KeyDecl>& scene_keys() {
              simulate_stage),
 
       // [modes]
+      text("modes.archived", "\"\"", {},
+           "an archived mode set (a modes.h5 kept by `make archive`), relative to the scene: "
+           "fsi-modes reuses it instead of solving, after checking that it was computed for "
+           "this scene's fsi-modes keys (material, formulation, count, ...) and for this mesh's "
+           "nodes; a mismatch is an error naming the difference",
+           modes_stage),
       integer("modes.count", "10", 1, 100000,
               "number of lowest modes to extract (with max_frequency_hz: the most to return)",
               modes_stage),
