@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -25,25 +24,6 @@ namespace {
 constexpr const char* stage_name = "fsi-report";
 namespace ds = io::ds;
 namespace ra = io::results_attr;
-
-std::vector<std::string> split(const std::string& text, char separator) {
-  std::vector<std::string> parts;
-  std::string part;
-  std::istringstream in(text);
-  while (std::getline(in, part, separator)) parts.push_back(part);
-  return parts;
-}
-
-std::string trim(const std::string& s) {
-  const auto a = s.find_first_not_of(" \t\r\n");
-  if (a == std::string::npos) return "";
-  return s.substr(a, s.find_last_not_of(" \t\r\n") - a + 1);
-}
-
-bool parse_double(const std::string& s, double& value) {
-  const auto [end, error] = std::from_chars(s.data(), s.data() + s.size(), value);
-  return error == std::errc() && end == s.data() + s.size() && std::isfinite(value);
-}
 
 double interpolate(const Curve& c, double t) {
   const auto it = std::lower_bound(c.t.begin(), c.t.end(), t);
@@ -132,7 +112,7 @@ RunData read_run(const std::filesystem::path& results) {
   const io::ArtefactReader r(results, io::results_schema());
   RunData d;
   if (r.has(ds::probe_time)) {
-    d.columns = split(r.string_attribute(ra::probe_columns).value_or(""), ',');
+    d.columns = split_csv_fields(r.string_attribute(ra::probe_columns).value_or(""));
     const std::vector<double> t = r.read_values(ds::probe_time);
     const io::MatrixRM values = r.read_matrix(ds::probe_values);
     for (Eigen::Index c = 0; c < values.cols(); ++c) {
@@ -325,12 +305,12 @@ Curve read_reference_csv(const std::filesystem::path& file, int time_column, int
   std::string line;
   std::vector<std::pair<double, double>> rows;
   for (int number = 1; std::getline(in, line); ++number) {
-    if (number == 1 || trim(line).empty()) continue;  // the header
-    const std::vector<std::string> fields = split(line, ',');
+    const std::vector<std::string> fields = split_csv_fields(line);
+    if (number == 1 || (fields.size() == 1 && fields[0].empty())) continue;  // header, blank
     const auto need = static_cast<std::size_t>(std::max(time_column, value_column));
     double t = 0, v = 0;
-    if (fields.size() <= need || !parse_double(trim(fields[time_column]), t) ||
-        !parse_double(trim(fields[value_column]), v))
+    if (fields.size() <= need || !parse_number(fields[time_column], t) ||
+        !parse_number(fields[value_column], v) || !std::isfinite(t) || !std::isfinite(v))
       input_error("{}:{}: expected numbers in columns {} and {} (0-based), got '{}'", file.string(),
                   number, time_column, value_column, line);
     rows.emplace_back(time_scale * t + time_offset, scale * v);

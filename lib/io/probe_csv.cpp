@@ -12,31 +12,6 @@
 namespace hm::io {
 namespace {
 
-std::string_view trimmed(std::string_view s) {
-  while (!s.empty() && (s.front() == ' ' || s.front() == '\t')) s.remove_prefix(1);
-  while (!s.empty() && (s.back() == ' ' || s.back() == '\t' || s.back() == '\r'))
-    s.remove_suffix(1);
-  return s;
-}
-
-std::vector<std::string_view> split_fields(std::string_view line) {
-  std::vector<std::string_view> fields;
-  std::size_t start = 0;
-  while (true) {
-    const std::size_t comma = line.find(',', start);
-    fields.push_back(trimmed(line.substr(start, comma - start)));
-    if (comma == std::string_view::npos) break;
-    start = comma + 1;
-  }
-  return fields;
-}
-
-bool parse_double(std::string_view text, double& value) {
-  const char* end = text.data() + text.size();
-  const auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  return ec == std::errc() && ptr == end && !text.empty();
-}
-
 void write_or_throw(std::FILE* file, const std::string& text, const std::filesystem::path& path) {
   if (std::fwrite(text.data(), 1, text.size(), file) != text.size() || std::fflush(file) != 0)
     input_error("cannot write the probe file '{}'", path.string());
@@ -44,13 +19,13 @@ void write_or_throw(std::FILE* file, const std::string& text, const std::filesys
 
 /// Parses one data row; "" on success, else what is wrong (naming line and column).
 std::string parse_row(std::string_view line, std::size_t line_number, ProbeTable& table) {
-  const auto fields = split_fields(line);
+  const auto fields = split_csv_fields(line);
   if (fields.size() != table.names.size())
     return fmt::format("line {} has {} fields, the header has {} columns", line_number,
                        fields.size(), table.names.size());
   std::vector<double> values(fields.size());
   for (std::size_t c = 0; c < fields.size(); ++c)
-    if (!parse_double(fields[c], values[c]))
+    if (!parse_number(fields[c], values[c]))
       return fmt::format("line {}, column {} ('{}'): '{}' is not a number", line_number, c + 1,
                          table.names[c], fields[c]);
   for (std::size_t c = 0; c < fields.size(); ++c) table.columns[c].push_back(values[c]);
@@ -137,7 +112,7 @@ ProbeTable read_probe_csv(const std::filesystem::path& path) {
     start = terminated ? end + 1 : all.size();
     ++line_number;
     if (line_number == 1) {
-      for (auto f : split_fields(line)) table.names.emplace_back(f);
+      table.names = split_csv_fields(line);
       if (table.names[0] != probe_time_column)
         input_error("probe file '{}', line 1, column 1: '{}' should be '{}'", file, table.names[0],
                     probe_time_column);
@@ -150,7 +125,7 @@ ProbeTable read_probe_csv(const std::filesystem::path& path) {
       table.columns.resize(table.names.size());
       continue;
     }
-    if (trimmed(line).empty()) continue;
+    if (line.find_first_not_of(" \t\r") == std::string_view::npos) continue;
     const std::string problem = parse_row(line, line_number, table);
     if (problem.empty()) continue;
     if (!terminated) break;  // cut off by a killed run

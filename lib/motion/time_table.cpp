@@ -1,7 +1,6 @@
 #include "motion/time_table.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <memory>
@@ -21,24 +20,6 @@ const std::vector<std::string>& accepted_columns() {
   static const std::vector<std::string> names{"x [m]", "y [m]", "z [m]", "theta [rad]",
                                               "theta [deg]"};
   return names;
-}
-
-std::string_view trim(std::string_view s) {
-  const auto first = s.find_first_not_of(" \t\r");
-  if (first == std::string_view::npos) return {};
-  const auto last = s.find_last_not_of(" \t\r");
-  return s.substr(first, last - first + 1);
-}
-
-std::vector<std::string> split_fields(std::string_view line) {
-  std::vector<std::string> fields;
-  std::size_t start = 0;
-  while (true) {
-    const auto comma = line.find(',', start);
-    fields.emplace_back(trim(line.substr(start, comma - start)));
-    if (comma == std::string_view::npos) return fields;
-    start = comma + 1;
-  }
 }
 
 void check_header(const std::string& file, const std::vector<std::string>& header,
@@ -68,9 +49,7 @@ void check_header(const std::string& file, const std::vector<std::string>& heade
 double parse_number(const std::string& file, std::size_t line, std::size_t column,
                     const std::string& header, const std::string& field) {
   double value = 0.0;
-  const char* end = field.data() + field.size();
-  const auto [ptr, ec] = std::from_chars(field.data(), end, value);
-  if (field.empty() || ec != std::errc() || ptr != end || !std::isfinite(value))
+  if (!hm::parse_number(field, value) || !std::isfinite(value))
     input_error("{}:{}: value '{}' in column {} ('{}') is not a finite number", file, line, field,
                 column, header);
   return value;
@@ -142,13 +121,13 @@ TimeTable read_time_table(const std::filesystem::path& path,
   std::string line;
   if (!std::getline(in, line))
     input_error("{}:1: file is empty; expected a header line starting with 't [s]'", file);
-  const auto header = split_fields(line);
+  const auto header = split_csv_fields(line);
   check_header(file, header, accepted);
   table.columns.assign(header.begin() + 1, header.end());
   table.values.resize(table.columns.size());
   for (std::size_t number = 2; std::getline(in, line); ++number) {
-    if (trim(line).empty()) continue;
-    const auto fields = split_fields(line);
+    if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+    const auto fields = split_csv_fields(line);
     if (fields.size() != header.size())
       input_error("{}:{}: {} comma-separated values, expected {} (one per header column: {})", file,
                   number, fields.size(), header.size(), join(header, ", "));
