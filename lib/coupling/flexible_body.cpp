@@ -83,9 +83,7 @@ double FlexibleBody<D>::max_speed() const {
     speed = std::max(speed, field(v_, k).norm());
   if (!carrier_) return speed;
   const motion::RigidState s = carrier_->state(time_);
-  double reach = 0.0;  // the farthest vertex from the pivot
-  for (const auto& x : modes_.x0) reach = std::max(reach, (widen<D>(x) - s.pivot).norm() + size_);
-  return speed + s.velocity.norm() + s.omega.norm() * reach;
+  return speed + s.velocity.norm() + s.omega.norm() * carrier_reach_;
 }
 
 template <int D>
@@ -115,6 +113,11 @@ double FlexibleBody<D>::stretch() const {
 template <int D>
 void FlexibleBody<D>::set_carrier(motion::RigidMotion carrier) {
   carrier_ = std::move(carrier);
+  // The farthest the body reaches from the (material) pivot, its deformation allowed for.
+  const Eigen::Vector3d pivot = carrier_->state(0.0).pivot;
+  carrier_reach_ = 0.0;
+  for (const auto& x : modes_.x0)
+    carrier_reach_ = std::max(carrier_reach_, (widen<D>(x) - pivot).norm() + size_);
 }
 
 template <int D>

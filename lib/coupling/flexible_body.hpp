@@ -195,6 +195,7 @@ class FlexibleBody {
   std::string name_;
   ModalSurface<D> modes_;
   std::optional<motion::RigidMotion> carrier_;
+  double carrier_reach_ = 0.0;  ///< max_v |X_v − pivot| + size() [m] (set_carrier)
   /// The tank's rotation where the wall was last placed (the fluid's loads are rotated back).
   mutable Eigen::Matrix<double, D, D> placed_rotation_ = Eigen::Matrix<double, D, D>::Identity();
   ldd::Vec<D> gravity_ = ldd::Vec<D>::Zero();  ///< [m/s²], from the flow at start()

@@ -233,6 +233,15 @@ void write_free_translation(io::ArtefactWriter& w, const coupling::ModalHistory&
   w.set_attribute(ra::free_axis, std::string(1, "xyz"[free.axis]));
 }
 
+/// Writes a per-step monitor and its run maximum (0 for no steps) as `attribute`; returns it.
+double write_with_maximum(io::ArtefactWriter& w, const char* dataset, const char* attribute,
+                          const std::vector<double>& column) {
+  w.write(dataset, column);
+  const double largest = column.empty() ? 0.0 : *std::max_element(column.begin(), column.end());
+  w.set_attribute(attribute, largest);
+  return largest;
+}
+
 template <int D>
 void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
                     const coupling::FlexibleBody<D>& body,
@@ -269,27 +278,20 @@ void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
   spdlog::info("{}: coupling {:.3g} s of {:.3g} s ({:.1f} %), of which added-mass solves {:.3g} s",
                stage_name, total, r.wall_seconds, 100 * total / std::max(r.wall_seconds, 1e-12),
                std::accumulate(added.begin(), added.end(), 0.0));
-  const auto stretch = coupling_column<double>(r.coupling, [](const C& c) { return c.stretch; });
-  w.write(ds::monitor_structure_stretch, stretch);
-  const double largest = stretch.empty() ? 0.0 : *std::max_element(stretch.begin(), stretch.end());
   w.set_attribute(ra::coupling_scheme, std::string(coupling::to_string(body.options().scheme)));
-  w.set_attribute(ra::max_structure_stretch, largest);
-  const auto deformation =
-      coupling_column<double>(r.coupling, [](const C& c) { return c.deformation; });
-  w.write(ds::monitor_structure_deformation, deformation);
-  w.set_attribute(
-      ra::max_structure_deformation,
-      deformation.empty() ? 0.0 : *std::max_element(deformation.begin(), deformation.end()));
-  const auto peak = coupling_column<double>(r.coupling, [](const C& c) { return c.peak_pressure; });
-  w.write(ds::monitor_structure_peak_pressure, peak);
-  const auto highest = std::max_element(peak.begin(), peak.end());
-  w.set_attribute(ra::max_structure_pressure, highest == peak.end() ? 0.0 : *highest);
-  if (highest != peak.end())
-    spdlog::info(
-        "{}: the structure's largest wall pressure {:.6g} Pa (step {}), its largest "
-        "elastic displacement {:.4g} m",
-        stage_name, *highest, highest - peak.begin() + 1,
-        *std::max_element(deformation.begin(), deformation.end()));
+  const double largest =
+      write_with_maximum(w, ds::monitor_structure_stretch, ra::max_structure_stretch,
+                         coupling_column<double>(r.coupling, [](const C& c) { return c.stretch; }));
+  const double deformation = write_with_maximum(
+      w, ds::monitor_structure_deformation, ra::max_structure_deformation,
+      coupling_column<double>(r.coupling, [](const C& c) { return c.deformation; }));
+  const double peak = write_with_maximum(
+      w, ds::monitor_structure_peak_pressure, ra::max_structure_pressure,
+      coupling_column<double>(r.coupling, [](const C& c) { return c.peak_pressure; }));
+  spdlog::info(
+      "{}: the structure's largest wall pressure {:.6g} Pa, its largest elastic "
+      "displacement {:.4g} m",
+      stage_name, peak, deformation);
   if (free) write_free_translation(w, h, *free);
   if (largest > 0.05)
     spdlog::warn(

@@ -43,6 +43,13 @@ inline PlateRig plate_rig(const Eigen::Matrix<double, 3, 2>& vertices, double he
   return rig;
 }
 
+/// The vertical plate x = 0.2 m, y ∈ [0.15, 0.25] (centre (0.2, 0.2)) in a tank 0.3 m high.
+inline PlateRig vertical_plate_rig() {
+  Eigen::Matrix<double, 3, 2> vertical;
+  vertical << 0.2, 0.15, 0.2, 0.2, 0.2, 0.25;
+  return plate_rig(vertical, 0.3);
+}
+
 /// The plate's one mode: the translation along x of a mass `mass` [kg] on a spring of `omega`
 /// [rad/s].
 inline ModalSurface<2> sliding_mode(const mesh::SurfaceMesh& plate, double mass, double omega) {

@@ -113,9 +113,7 @@ TEST(FlexibleBody, StaticStartHoldsThePistonAtItsStaticOffset) {
 // ü + ω²u = −Ẍ = Aω_b² sin ω_b t from rest, u = Aω_b²/(ω² − ω_b²) (sin ω_b t − (ω_b/ω) sin ωt).
 TEST(FlexibleBody, BaseExcitationOfABodyOnASwayingTank) {
   const double A = 0.005, period = 1.0, mass = 2.0, omega = 2 * std::numbers::pi * 3;
-  Eigen::Matrix<double, 3, 2> vertical;
-  vertical << 0.2, 0.15, 0.2, 0.2, 0.2, 0.25;
-  PlateRig rig = plate_rig(vertical, 0.3);
+  PlateRig rig = vertical_plate_rig();  // centre (0.2, 0.2)
   ldd::FlowSolver<2>& flow = *rig.flow;
   const mesh::SurfaceMesh &tank = rig.tank, &plate = rig.plate;
   ModalSurface<2> modes = sliding_mode(plate, mass, omega);
@@ -148,9 +146,7 @@ TEST(FlexibleBody, BaseExcitationOfABodyOnASwayingTank) {
 TEST(FlexibleBody, BodyOnARollingTankFollowsTheTankFrameEquation) {
   const double theta0 = 0.05, f = 1.0, mass = 2.0, omega = 2 * std::numbers::pi * 3;
   const Eigen::Vector3d pivot(0.2, 0.05, 0.0);
-  Eigen::Matrix<double, 3, 2> vertical;
-  vertical << 0.2, 0.15, 0.2, 0.2, 0.2, 0.25;  // centre (0.2, 0.2): r = (0, 0.15)
-  PlateRig rig = plate_rig(vertical, 0.3);
+  PlateRig rig = vertical_plate_rig();  // centre (0.2, 0.2)
   ldd::FlowSolver<2>& flow = *rig.flow;
   const mesh::SurfaceMesh &tank = rig.tank, &plate = rig.plate;
   ModalSurface<2> modes = sliding_mode(plate, mass, omega);
