@@ -21,6 +21,12 @@
 # scene, e.g. a coarser dx and a shorter end time for ctest), else `scene.toml`; the default
 # variant `full` runs `scene.toml` (or `scene.full.toml`). Each variant has its own outputs.
 #
+# Overrides: `make SET="fluid.dx=0.005 time.end=0.2" VARIANT=coarse` runs every stage with
+# `--set fluid.dx=0.005 --set time.end=0.2` (scene keys; no blanks inside one setting: write
+# arrays as [0.0,0.01]). The artefacts record the values used, so changing SET reruns exactly
+# the stages whose keys changed; give such a run its own VARIANT (or OUT) to keep the unmodified
+# outputs. The speed-against-error studies (pipelines/studies/) are built on this.
+#
 # What runs follows the scene: a [structure] section brings mesh → modes → map; a [fluid]
 # section brings simulate (on mesh.h5 when there is a structure, else fsi-simulate meshes the
 # [[wall]]s itself, as fsi-mesh needs a structure); [[load]]s without a [fluid] bring a
@@ -33,6 +39,8 @@ HM_BUILD ?= $(ROOT)/build/release
 BIN      := $(HM_BUILD)/stages
 OUT      := $(ROOT)/out/$(CASE)/$(VARIANT)
 SCENE    := $(abspath $(firstword $(wildcard scene.$(VARIANT).toml) scene.toml))
+SET      ?=
+SCENE_ARGS := $(SCENE) $(foreach setting,$(SET),--set '$(setting)')
 HAS_STRUCTURE := $(shell grep -q '^\[structure\]' $(SCENE) && echo yes)
 HAS_FLUID     := $(shell grep -q '^\[fluid\]' $(SCENE) && echo yes)
 HAS_LOADS     := $(shell grep -q '^\[\[load\]\]' $(SCENE) && echo yes)
@@ -57,13 +65,13 @@ simulate: $(OUT)/results.h5
 
 $(OUT)/mesh.h5: FORCE
 	@mkdir -p $(OUT)
-	$(FSI_MESH) $(SCENE) -o $@ --if-stale
+	$(FSI_MESH) $(SCENE_ARGS) -o $@ --if-stale
 
 $(OUT)/modes.h5: $(OUT)/mesh.h5 FORCE
-	$(FSI_MODES) $(SCENE) --mesh $(OUT)/mesh.h5 -o $@ --if-stale
+	$(FSI_MODES) $(SCENE_ARGS) --mesh $(OUT)/mesh.h5 -o $@ --if-stale
 
 $(OUT)/mapped.h5: $(OUT)/modes.h5 FORCE
-	$(FSI_MAP) $(SCENE) --modes $(OUT)/modes.h5 -o $@ --if-stale
+	$(FSI_MAP) $(SCENE_ARGS) --modes $(OUT)/modes.h5 -o $@ --if-stale
 
 # The flow; probes.csv and snapshots/ (ParaView: snapshots/flow.xdmf) land next to results.h5.
 # A structure-only run takes the mode set as well (--modes).
@@ -71,13 +79,13 @@ $(OUT)/mapped.h5: $(OUT)/modes.h5 FORCE
 COUPLED := $(and $(HAS_FLUID),$(HAS_STRUCTURE))
 $(OUT)/results.h5: $(if $(HAS_STRUCTURE),$(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),$(OUT)/modes.h5) $(if $(COUPLED),$(OUT)/mapped.h5) FORCE
 	@mkdir -p $(OUT)
-	$(FSI_SIMULATE) $(SCENE) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),--modes $(OUT)/modes.h5) $(if $(COUPLED),--mapped $(OUT)/mapped.h5) -o $@ --if-stale
+	$(FSI_SIMULATE) $(SCENE_ARGS) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),--modes $(OUT)/modes.h5) $(if $(COUPLED),--mapped $(OUT)/mapped.h5) -o $@ --if-stale
 
 # The report (fsi-report): every probe against the scene's [[report.compare]] references, the
 # structure's response and the run monitors as PNG, the error metrics as metrics.md/.json.
 report: $(OUT)/report/metrics.h5
 $(OUT)/report/metrics.h5: $(OUT)/results.h5 FORCE
-	$(FSI_REPORT) $(SCENE) --results $(OUT)/results.h5 -o $@ --if-stale
+	$(FSI_REPORT) $(SCENE_ARGS) --results $(OUT)/results.h5 -o $@ --if-stale
 	@cat $(OUT)/report/metrics.md
 
 # The mode archive (default: archive/modes/ at the repository root).

@@ -43,24 +43,20 @@ std::string join(std::span<const std::string> parts, std::string_view separator)
   return out;
 }
 
-namespace {
-
 std::string_view trimmed(std::string_view s) {
   const auto first = s.find_first_not_of(" \t\r");
   if (first == std::string_view::npos) return {};
   return s.substr(first, s.find_last_not_of(" \t\r") - first + 1);
 }
 
-}  // namespace
-
-std::vector<std::string> split_csv_fields(std::string_view line) {
+std::vector<std::string> split_fields(std::string_view text, char separator) {
   std::vector<std::string> fields;
   std::size_t start = 0;
   while (true) {
-    const std::size_t comma = line.find(',', start);
-    fields.emplace_back(trimmed(line.substr(start, comma - start)));
-    if (comma == std::string_view::npos) return fields;
-    start = comma + 1;
+    const std::size_t next = text.find(separator, start);
+    fields.emplace_back(trimmed(text.substr(start, next - start)));
+    if (next == std::string_view::npos) return fields;
+    start = next + 1;
   }
 }
 

@@ -16,9 +16,16 @@ std::string closest_match(std::string_view word, std::span<const std::string> ca
 /// Joins strings with a separator.
 std::string join(std::span<const std::string> parts, std::string_view separator);
 
-/// The comma-separated fields of one CSV line, each trimmed of blanks, tabs and a trailing CR
-/// ("a, b" → {"a", "b"}; "" → {""}).
-std::vector<std::string> split_csv_fields(std::string_view line);
+/// `text` without leading and trailing blanks, tabs and CRs.
+std::string_view trimmed(std::string_view text);
+
+/// The fields of `text` between `separator`s, each trimmed ("a, b" → {"a", "b"}; "" → {""}).
+std::vector<std::string> split_fields(std::string_view text, char separator);
+
+/// The comma-separated fields of one CSV line, each trimmed of blanks, tabs and a trailing CR.
+inline std::vector<std::string> split_csv_fields(std::string_view line) {
+  return split_fields(line, ',');
+}
 
 /// Parses a number that fills `text` exactly (no blanks, nothing after it); false otherwise.
 /// "inf" and "nan" parse: callers that need a finite value check it.

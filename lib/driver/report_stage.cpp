@@ -1,6 +1,5 @@
 #include "driver/report_stage.hpp"
 
-#include <unistd.h>
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
@@ -15,6 +14,8 @@
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/text.hpp"
+#include "driver/gnuplot.hpp"
+#include "driver/metrics_json.hpp"
 #include "io/artefact.hpp"
 #include "io/schema.hpp"
 
@@ -50,55 +51,6 @@ struct Comparison {
   std::filesystem::path file;
   Curve reference;
 };
-
-std::string file_stem_of(const std::string& column) {
-  std::string out;
-  for (const char ch : column) {
-    if (std::isalnum(static_cast<unsigned char>(ch)) || ch == '.' || ch == '_')
-      out += ch;
-    else if (!out.empty() && out.back() != '_')
-      out += '_';
-  }
-  while (!out.empty() && (out.back() == '_' || out.back() == '.')) out.pop_back();
-  return out;
-}
-
-void write_dat(const std::filesystem::path& file, const Curve& c) {
-  std::ofstream out(file);
-  out.precision(17);
-  for (std::size_t k = 0; k < c.t.size(); ++k) out << c.t[k] << ' ' << c.v[k] << '\n';
-  if (!out) input_error("{}: cannot write", file.string());
-}
-
-std::string quoted(const std::string& s) {
-  std::string out = "'";
-  for (const char ch : s) out += ch == '\'' ? std::string("''") : std::string(1, ch);
-  return out + "'";
-}
-
-/// Runs gnuplot on `script` in `folder`; InputError when it is missing or fails.
-void run_gnuplot(const std::filesystem::path& folder, const std::string& script) {
-  const auto file = folder / "plots.gp";
-  {
-    std::ofstream out(file);
-    out << script;
-  }
-  const std::string command =
-      fmt::format("cd '{}' && gnuplot plots.gp > gnuplot.log 2>&1", folder.string());
-  const int status = std::system(command.c_str());
-  if (status != 0)
-    input_error(
-        "{}: gnuplot failed (exit status {}) on {}; see {} (is gnuplot installed? "
-        "Debian: gnuplot-nox)",
-        stage_name, status, file.string(), (folder / "gnuplot.log").string());
-}
-
-std::string plot_header(const std::string& png, const std::string& title, const std::string& y) {
-  return fmt::format(
-      "set terminal pngcairo size 960,560 font ',10'\nset output {}\nset title {}\nset grid\n"
-      "set key top left\nset xlabel 't [s]'\nset ylabel {}\n",
-      quoted(png), quoted(title), quoted(y));
-}
 
 struct RunData {
   std::vector<std::string> columns;
@@ -189,20 +141,11 @@ nlohmann::ordered_json metrics_json(const std::vector<Comparison>& cs,
                                     const std::vector<CurveMetrics>& ms) {
   nlohmann::ordered_json j = nlohmann::ordered_json::array();
   for (std::size_t k = 0; k < cs.size(); ++k) {
-    const auto& m = ms[k];
-    j.push_back({{"column", cs[k].column},
-                 {"reference", cs[k].label},
-                 {"reference_file", cs[k].file.string()},
-                 {"peak", m.peak},
-                 {"peak_time_s", m.peak_time},
-                 {"reference_peak", m.reference_peak},
-                 {"reference_peak_time_s", m.reference_peak_time},
-                 {"peak_error", m.peak_error},
-                 {"peak_time_error_s", m.peak_time_error},
-                 {"rms", m.rms},
-                 {"rms_relative", m.rms_relative},
-                 {"window_s", {m.window_start, m.window_end}},
-                 {"reference_samples", m.samples}});
+    nlohmann::ordered_json entry = {{"column", cs[k].column},
+                                    {"reference", cs[k].label},
+                                    {"reference_file", cs[k].file.string()}};
+    entry.update(curve_metrics_json(ms[k]));
+    j.push_back(std::move(entry));
   }
   return j;
 }
@@ -214,17 +157,17 @@ std::string plot_script(const std::filesystem::path& folder, const RunData& run,
   std::string script;
   for (std::size_t c = 0; c < run.columns.size(); ++c) {
     const std::string stem = file_stem_of(run.columns[c]);
-    write_dat(folder / "data" / (stem + ".dat"), run.probes[c]);
+    write_curve_dat(folder / "data" / (stem + ".dat"), run.probes[c]);
     std::vector<std::string> series{fmt::format("{} using 1:2 with lines lw 2 title 'hydromodal'",
-                                                quoted("data/" + stem + ".dat"))};
+                                                gnuplot_quoted("data/" + stem + ".dat"))};
     for (std::size_t k = 0; k < cs.size(); ++k) {
       if (cs[k].column != run.columns[c]) continue;
       const std::string ref = fmt::format("data/{}.ref{}.dat", stem, k);
-      write_dat(folder / ref, cs[k].reference);
+      write_curve_dat(folder / ref, cs[k].reference);
       series.push_back(fmt::format("{} using 1:2 with linespoints pt 7 ps 0.5 title {}",
-                                   quoted(ref), quoted(cs[k].label)));
+                                   gnuplot_quoted(ref), gnuplot_quoted(cs[k].label)));
     }
-    script += plot_header(stem + ".png", run.columns[c], run.columns[c]);
+    script += plot_header(stem + ".png", run.columns[c], "t [s]", run.columns[c]);
     script += "plot " + join(series, ", \\\n     ") + "\n";
   }
   if (run.modal.size() > 0) {
@@ -235,7 +178,7 @@ std::string plot_script(const std::filesystem::path& folder, const RunData& run,
       for (Eigen::Index m = 0; m < run.modal.cols(); ++m) out << ' ' << run.modal(k, m);
       out << '\n';
     }
-    script += plot_header("structure.png", "structure: modal coordinates", "y [m·√kg]");
+    script += plot_header("structure.png", "structure: modal coordinates", "t [s]", "y [m·√kg]");
     std::vector<std::string> series;
     for (Eigen::Index m = 0; m < run.modal.cols(); ++m)
       series.push_back(
@@ -243,9 +186,9 @@ std::string plot_script(const std::filesystem::path& folder, const RunData& run,
     script += "plot " + join(series, ", \\\n     ") + "\n";
   }
   if (!run.dt.t.empty()) {
-    write_dat(folder / "data" / "dt.dat", run.dt);
-    write_dat(folder / "data" / "ppe_iterations.dat", run.ppe_iterations);
-    write_dat(folder / "data" / "volume_drift.dat", run.volume_drift);
+    write_curve_dat(folder / "data" / "dt.dat", run.dt);
+    write_curve_dat(folder / "data" / "ppe_iterations.dat", run.ppe_iterations);
+    write_curve_dat(folder / "data" / "volume_drift.dat", run.volume_drift);
     script +=
         "set terminal pngcairo size 960,900 font ',10'\nset output 'monitors.png'\nunset title\n"
         "set multiplot layout 3,1\nset grid\nunset key\nset xlabel 't [s]'\n"
@@ -326,6 +269,39 @@ Curve read_reference_csv(const std::filesystem::path& file, int time_column, int
   return c;
 }
 
+Curve read_probe_column(const std::filesystem::path& results, const std::string& column) {
+  RunData run = read_run(results);
+  const auto it = std::find(run.columns.begin(), run.columns.end(), column);
+  if (it == run.columns.end())
+    input_error("{}: no probe column \"{}\" (columns: {})", results.string(), column,
+                join(run.columns, ", "));
+  return std::move(run.probes[static_cast<std::size_t>(it - run.columns.begin())]);
+}
+
+Curve report_reference(const io::Scene& scene, const std::string& column,
+                       const std::string& label) {
+  std::vector<std::string> known;
+  for (const io::SceneView& view : compare_entries(scene)) {
+    const std::string entry_label = view.string("label").empty()
+                                        ? view.file_path("file").stem().string()
+                                        : view.string("label");
+    if (view.string("column") == column && entry_label == label)
+      return read_reference_csv(
+          view.file_path("file"), static_cast<int>(view.integer("time_column")),
+          static_cast<int>(view.integer("value_column")), view.number("scale"),
+          view.number("time_scale"), view.number("time_offset"));
+    known.push_back(fmt::format("\"{}\" for \"{}\"", entry_label, view.string("column")));
+  }
+  input_error("{}: no [[report.compare]] entry labelled \"{}\" for the column \"{}\" (entries: {})",
+              scene.file().string(), label, column, known.empty() ? "none" : join(known, ", "));
+}
+
+std::pair<double, double> report_window_bounds(const io::Scene& scene) {
+  const Eigen::VectorXd window = report_window(scene);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  return window.size() == 2 ? std::pair{window[0], window[1]} : std::pair{nan, nan};
+}
+
 void validate_report_scene(const io::Scene& scene) {
   for (const io::SceneView& view : compare_entries(scene))
     if (!std::filesystem::exists(view.file_path("file")))
@@ -342,26 +318,19 @@ void run_report_stage(const io::Scene& scene, const std::filesystem::path& resul
   validate_report_scene(scene);
   const RunData run = read_run(results);
   const std::vector<Comparison> cs = comparisons(scene, run);
-  const Eigen::VectorXd window = report_window(scene);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const auto [window_start, window_end] = report_window_bounds(scene);
   std::vector<CurveMetrics> ms;
   for (const Comparison& c : cs) {
     const auto column = static_cast<std::size_t>(
         std::find(run.columns.begin(), run.columns.end(), c.column) - run.columns.begin());
-    ms.push_back(compare_curves(run.probes[column], c.reference,
-                                window.size() == 2 ? window[0] : nan,
-                                window.size() == 2 ? window[1] : nan,
+    ms.push_back(compare_curves(run.probes[column], c.reference, window_start, window_end,
                                 fmt::format("{} against {}", c.column, c.file.string())));
   }
 
   // Everything is written into a fresh folder beside the report's and renamed over it.
   const std::filesystem::path folder = output.parent_path().empty() ? "." : output.parent_path();
-  const std::filesystem::path staging =
-      folder.parent_path() / fmt::format(".{}.tmp-{}", folder.filename().string(), ::getpid());
-  std::filesystem::remove_all(staging);
-  std::filesystem::create_directories(staging);
-  try {
-    run_gnuplot(staging, plot_script(staging, run, cs));
+  write_folder_atomically(folder, [&](const std::filesystem::path& staging) {
+    run_gnuplot(staging, plot_script(staging, run, cs), stage_name);
     {
       std::ofstream json(staging / "metrics.json");
       json << metrics_json(cs, ms).dump(2) << '\n';
@@ -386,12 +355,7 @@ void run_report_stage(const io::Scene& scene, const std::filesystem::path& resul
     if (table.rows() > 0) w.write("/comparisons/metrics", table);
     w.set_attribute("comparison_labels", join(labels, "\n"));
     w.commit();
-  } catch (...) {
-    std::filesystem::remove_all(staging);
-    throw;
-  }
-  std::filesystem::remove_all(folder);
-  std::filesystem::rename(staging, folder);
+  });
   spdlog::info("{}: {} plot(s) and {} comparison(s) in {}:\n{}", stage_name,
                run.columns.size() + (run.modal.size() > 0) + !run.dt.t.empty(), cs.size(),
                folder.string(), metrics_markdown(cs, ms));

@@ -46,6 +46,17 @@ CurveMetrics compare_curves(const Curve& run, const Curve& reference, double win
 Curve read_reference_csv(const std::filesystem::path& file, int time_column, int value_column,
                          double scale, double time_scale, double time_offset);
 
+/// The probe column `column` ("tip.ux [m]") of a results artefact; InputError naming the
+/// columns it has when there is no such column.
+Curve read_probe_column(const std::filesystem::path& results, const std::string& column);
+
+/// The reference curve of the scene's [[report.compare]] entry for `column` labelled `label`;
+/// InputError listing the entries when there is none.
+Curve report_reference(const io::Scene& scene, const std::string& column, const std::string& label);
+
+/// report.window as [t0, t1] [s], NaN for an open end (no window).
+std::pair<double, double> report_window_bounds(const io::Scene& scene);
+
 void validate_report_scene(const io::Scene& scene);
 
 /// Writes the report of `results` into the folder of `output` (output = <folder>/metrics.h5).

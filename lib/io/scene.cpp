@@ -1,6 +1,7 @@
 #include "io/scene.hpp"
 
 #include <algorithm>
+#include <charconv>
 #include <fstream>
 #include <map>
 #include <set>
@@ -78,6 +79,87 @@ std::string format_value(const toml::node& node) {
   return "?";
 }
 
+// ---- --set KEY=VALUE ----------------------------------------------------------------------------
+
+/// VALUE as a TOML value; a bare word that is no TOML value is taken as a string.
+toml::node_view<toml::node> override_value(toml::table& holder, const std::string& setting,
+                                           const std::string& value) {
+  try {
+    holder = toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    const bool bare_word = !value.empty() && value.find_first_of("\"'[]{}=\n") == std::string::npos;
+    if (!bare_word)
+      input_error(
+          "--set {}: '{}' is not a TOML value (a number, true/false, \"text\", or an "
+          "array such as [0.0,0.01])",
+          setting, value);
+    holder = toml::table{{"v", value}};
+  }
+  return holder["v"];
+}
+
+/// One segment of a --set path: a key, or a key with an index into an array of tables.
+struct PathSegment {
+  std::string key;
+  std::optional<std::size_t> index;
+};
+
+std::vector<PathSegment> override_path(const std::string& setting, const std::string& key) {
+  std::vector<PathSegment> segments;
+  for (const auto& part : split_fields(key, '.')) {
+    PathSegment segment{part, std::nullopt};
+    if (const auto open = part.find('['); open != std::string::npos) {
+      const auto close = part.find(']', open);
+      std::size_t index = 0;
+      const char* first = part.data() + open + 1;
+      const auto [end, error] = std::from_chars(first, part.data() + close, index);
+      if (close != part.size() - 1 || error != std::errc{} || end != part.data() + close)
+        input_error("--set {}: '{}' is not a key or key[index]", setting, part);
+      segment = {part.substr(0, open), index};
+    }
+    if (segment.key.empty()) input_error("--set {}: the key '{}' has an empty part", setting, key);
+    segments.push_back(segment);
+  }
+  return segments;
+}
+
+/// Applies "KEY=VALUE" to the parsed scene: creates missing tables on the way, never new
+/// elements of an array of tables (the scene must have them).
+void apply_override(toml::table& root, const std::string& setting,
+                    const std::filesystem::path& file) {
+  const auto equals = setting.find('=');
+  if (equals == std::string::npos || equals == 0)
+    input_error("--set '{}': expected KEY=VALUE, e.g. fluid.dx=0.005 or wall[0].mesh_size=0.02",
+                setting);
+  const std::string key(trimmed(std::string_view(setting).substr(0, equals))),
+      value(trimmed(std::string_view(setting).substr(equals + 1)));
+  const auto segments = override_path(setting, key);
+  toml::table* table = &root;
+  for (std::size_t i = 0; i + 1 < segments.size(); ++i) {
+    const auto& [name, index] = segments[i];
+    toml::node* node = table->get(name);
+    if (index) {
+      auto* array = node ? node->as_array() : nullptr;
+      if (!array || !array->is_array_of_tables() || *index >= array->size())
+        input_error("--set {}: {} has {} [[{}]] entr{}, so there is no {}[{}]", setting,
+                    file.string(), array ? array->size() : 0, name,
+                    array && array->size() == 1 ? "y" : "ies", name, *index);
+      table = array->get(*index)->as_table();
+      continue;
+    }
+    if (!node) node = table->insert(name, toml::table{}).first->second.as_table();
+    if (!node->is_table())
+      input_error("--set {}: '{}' in {} is a value, not a section", setting, name, file.string());
+    table = node->as_table();
+  }
+  const auto& [leaf, leaf_index] = segments.back();
+  if (leaf_index) input_error("--set {}: the last part of the key cannot have an index", setting);
+  if (const toml::node* existing = table->get(leaf); existing && existing->is_table())
+    input_error("--set {}: '{}' is a section, not a key", setting, key);
+  toml::table holder;
+  table->insert_or_assign(leaf, *override_value(holder, setting, value).node());
+}
+
 class Validator {
  public:
   Validator(toml::table& root, std::filesystem::path file) : root_(root), file_(std::move(file)) {}
@@ -94,7 +176,9 @@ class Validator {
 
  private:
   std::string at(const toml::node& node) const {
-    return fmt::format("{}:{}", file_.filename().string(), node.source().begin.line);
+    const auto line = node.source().begin.line;
+    return line ? fmt::format("{}:{}", file_.filename().string(), line)
+                : fmt::format("{} (--set)", file_.filename().string());
   }
 
   bool is_known_prefix(const std::string& normalised) const {
@@ -368,7 +452,8 @@ Scene::Scene(const Scene& other)
   static_cast<SceneView&>(*this) = SceneView(&resolved_, "", other.file());
 }
 
-Scene Scene::parse(const std::string& text, const std::filesystem::path& path) {
+Scene Scene::parse(const std::string& text, const std::filesystem::path& path,
+                   const std::vector<std::string>& overrides) {
   toml::table table;
   try {
     table = toml::parse(text, path.string());
@@ -376,17 +461,18 @@ Scene Scene::parse(const std::string& text, const std::filesystem::path& path) {
     input_error("{}:{}:{}: TOML syntax error: {}", path.string(), e.source().begin.line,
                 e.source().begin.column, e.description());
   }
+  for (const auto& setting : overrides) apply_override(table, setting, path);
   Validator(table, path).run();
   return Scene(std::move(table), path);
 }
 
-Scene Scene::load(const std::filesystem::path& path) {
+Scene Scene::load(const std::filesystem::path& path, const std::vector<std::string>& overrides) {
   std::ifstream in(path);
   if (!in)
     input_error("cannot read the scene file '{}': no such file or no permission", path.string());
   std::stringstream buffer;
   buffer << in.rdbuf();
-  return parse(buffer.str(), path);
+  return parse(buffer.str(), path, overrides);
 }
 
 std::string Scene::canonical(const std::vector<std::string>& stages_filter) const {

@@ -73,8 +73,14 @@ class SceneView {
 class Scene : public SceneView {
  public:
   /// Parses and validates; InputError listing every problem (file, line, key, value, accepted).
-  static Scene load(const std::filesystem::path& path);
-  static Scene parse(const std::string& text, const std::filesystem::path& path);
+  /// `overrides` are "KEY=VALUE" settings from the command line (--set), applied before the
+  /// validation: KEY a dotted path, an element of an array of tables by index
+  /// ("wall[0].mesh_size"); VALUE a TOML value (0.005, [0.0,0.01], "text"; a bare word is taken
+  /// as a string). InputError naming the setting when its path or value cannot be applied.
+  static Scene load(const std::filesystem::path& path,
+                    const std::vector<std::string>& overrides = {});
+  static Scene parse(const std::string& text, const std::filesystem::path& path,
+                     const std::vector<std::string>& overrides = {});
 
   /// Canonical "key = value" lines of every key that `stage` depends on (defaults included).
   std::string parameters_for(const std::string& stage) const;

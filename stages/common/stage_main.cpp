@@ -34,6 +34,11 @@ int run_stage(int argc, char** argv, const StageInfo& info,
     app.add_flag("--validate", args.validate,
                  "check the scene for this stage and exit; runs nothing");
   for (const auto& [name, help] : info.flags) app.add_flag("--" + name, args.flags[name], help);
+  if (info.positional == "SCENE")
+    app.add_option("--set", args.overrides,
+                   "override a scene key, e.g. --set fluid.dx=0.005 --set wall[0].mesh_size=0.02 "
+                   "(repeatable; checked like the file; the artefact records the values used)")
+        ->type_name("KEY=VALUE");
   app.add_flag("--print-config-reference", print_reference,
                "print the reference of every scene key (Markdown) and exit");
   app.add_flag("-q,--quiet", quiet, "only warnings and errors");
@@ -70,6 +75,10 @@ int run_stage(int argc, char** argv, const StageInfo& info,
   }
 }
 
+void log_overrides(const std::string& stage, const std::vector<std::string>& overrides) {
+  for (const auto& setting : overrides) spdlog::info("{}: --set {}", stage, setting);
+}
+
 int run_scene_stage(int argc, char** argv, const StageInfo& scene_info, const SceneStage& stage) {
   StageInfo info = scene_info;
   info.flags.emplace_back("if-stale",
@@ -77,7 +86,8 @@ int run_scene_stage(int argc, char** argv, const StageInfo& scene_info, const Sc
                           "version, with other scene parameters, or from inputs whose content "
                           "changed (content hashes decide, not timestamps)");
   return run_stage(argc, argv, info, [&](const StageArgs& args) {
-    const io::Scene scene = io::Scene::load(args.positional);
+    const io::Scene scene = io::Scene::load(args.positional, args.overrides);
+    log_overrides(info.name, args.overrides);
     spdlog::info("{}: resolved parameters of {}:\n{}", info.name, args.positional,
                  scene.parameters_for(info.name));
     if (args.validate) {

@@ -32,6 +32,7 @@ struct StageArgs {
   std::string output;
   bool validate = false;
   std::map<std::string, bool> flags;
+  std::vector<std::string> overrides;  ///< --set KEY=VALUE, scene keys (stages taking a SCENE)
   Verbosity verbosity = Verbosity::normal;
 };
 
@@ -46,6 +47,9 @@ struct SceneStage {
                      const std::string& output)>
       run;
 };
+
+/// Logs the --set overrides a stage runs with (one line each).
+void log_overrides(const std::string& stage, const std::vector<std::string>& overrides);
 
 /// The common shape of fsi-mesh, fsi-modes, fsi-map, ...: load the scene, echo the resolved
 /// parameters of this stage, then --validate or run (every --<input> and -o required).

@@ -14,7 +14,8 @@ namespace {
 constexpr const char* name = "fsi-simulate";
 
 void simulate(const hm::stages::StageArgs& args) {
-  const hm::io::Scene scene = hm::io::Scene::load(args.positional);
+  const hm::io::Scene scene = hm::io::Scene::load(args.positional, args.overrides);
+  hm::stages::log_overrides(name, args.overrides);
   spdlog::info("{}: resolved parameters of {}:\n{}", name, args.positional,
                scene.parameters_for(name));
   if (args.validate) {

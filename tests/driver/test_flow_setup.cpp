@@ -6,7 +6,10 @@
 #include <fstream>
 #include <numbers>
 
+#include "../common/replaced.hpp"
 #include "driver/flow_setup.hpp"
+
+using hm::test::replaced;
 
 namespace hm::driver {
 namespace {
@@ -68,12 +71,6 @@ wall = "tank"
 io::Scene scene_from(const std::string& text) {
   fs::create_directories(folder);
   return io::Scene::parse(text, folder / "scene.toml");
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
 }
 
 /// The InputError message of setting up `text` ("" when there is none).

@@ -1,10 +1,13 @@
 // Scene files: declared keys only, types and ranges checked, defaults filled, canonical text.
 #include <gtest/gtest.h>
 
+#include "../common/replaced.hpp"
 #include "core/errors.hpp"
 #include "io/scene.hpp"
 
 using hm::io::Scene;
+
+using hm::test::replaced;
 
 namespace {
 
@@ -42,12 +45,6 @@ std::string error_of(const std::string& text) {
     return e.what();
   }
   return "(accepted)";
-}
-
-std::string replaced(std::string text, const std::string& from, const std::string& to) {
-  const auto at = text.find(from);
-  EXPECT_NE(at, std::string::npos) << from;
-  return text.replace(at, from.size(), to);
 }
 
 }  // namespace
@@ -145,4 +142,53 @@ TEST(Scene, ReferenceIsGeneratedFromDeclarations) {
     EXPECT_NE(ref.find("| `" + leaf + "` |"), std::string::npos) << key.path;
   }
   EXPECT_NE(ref.find("## [structure.material]"), std::string::npos);
+}
+
+namespace {
+
+std::string override_error(const std::vector<std::string>& overrides) {
+  try {
+    Scene::parse(gate_scene, "scene.toml", overrides);
+  } catch (const hm::InputError& e) {
+    return e.what();
+  }
+  return "(accepted)";
+}
+
+}  // namespace
+
+// --set KEY=VALUE: values replace the file's, missing sections are created, array-of-table
+// elements are addressed by index, and every override is validated like the file.
+TEST(Scene, OverridesReplaceAndAreValidated) {
+  const Scene scene =
+      Scene::parse(gate_scene, "scene.toml",
+                   {"structure.material.youngs_modulus=13e6", "modes.count = 3",
+                    "structure.group[0].name=top", "structure.clamped=top",
+                    "structure.geometry.size=[0.006,0.079]", "structure.formulation=plane_stress"});
+  EXPECT_DOUBLE_EQ(scene.number("structure.material.youngs_modulus"), 13e6);
+  EXPECT_EQ(scene.integer("modes.count"), 3);  // [modes] is not in the file: created
+  EXPECT_EQ(scene.array("structure.group")[0].string("name"), "top");
+  EXPECT_DOUBLE_EQ(scene.vector("structure.geometry.size")[0], 0.006);
+  EXPECT_EQ(scene.string("structure.formulation"), "plane_stress");  // a bare word: a string
+  // The canonical parameters record the overridden values, so the artefacts' provenance does.
+  EXPECT_NE(scene.parameters_for("fsi-modes").find("structure.material.youngs_modulus = 13000000"),
+            std::string::npos);
+
+  EXPECT_NE(override_error({"structure.material.youngs_modulos=1"})
+                .find("scene.toml (--set): unknown key 'structure.material.youngs_modulos'; did "
+                      "you mean 'structure.material.youngs_modulus'?"),
+            std::string::npos);
+  EXPECT_NE(override_error({"structure.material.poisson_ratio=0.7"}).find("is out of range"),
+            std::string::npos);
+  EXPECT_NE(override_error({"structure.group[1].name=x"})
+                .find("has 1 [[group]] entry, so there is no group[1]"),
+            std::string::npos);
+  EXPECT_NE(override_error({"structure.mesh"}).find("expected KEY=VALUE"), std::string::npos);
+  EXPECT_NE(override_error({"structure.mesh=1"}).find("is a section, not a key"),
+            std::string::npos);
+  EXPECT_NE(override_error({"structure.material.youngs_modulus.x=1"}).find("is a value"),
+            std::string::npos);
+  EXPECT_NE(override_error({"modes.count=[1,"}).find("is not a TOML value"), std::string::npos);
+  EXPECT_NE(override_error({"structure.group[x].name=a"}).find("is not a key or key[index]"),
+            std::string::npos);
 }

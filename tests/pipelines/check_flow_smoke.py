@@ -383,6 +383,48 @@ def check_hydrostatic_probe(c, scene, probes, name):
              f"({100 * (p0 / expected - 1):+.1f} %) within 10 %")
 
 
+def hydrostatic_tank(c, scene, out, source, build):
+    """Water at rest (2-D or 3-D): at every probe row, each pressure probe within 1 % of ρgH of
+    ρg·depth when its averaging ball (radius h = 2.5 dx) lies inside the water; a ball cut by the
+    floor, a wall or the surface averages around a centroid moved by up to 3h/8 (a half ball), so
+    then within ρg·3h/8. Each elevation probe within dx/4 of the still surface, the tank's
+    vertical force within 1 % of −ρgH·(floor area); the volume kept within 0.5 %; nothing
+    escaped."""
+    drift = check_run(c, scene, out, build)
+    c.expect(drift < 0.005, f"max |volume drift| {100 * drift:.3f} % < 0.5 %")
+    escaped = dataset(build, out / "results.h5", "/monitors/escaped")[-1]
+    c.expect(escaped == 0, f"{escaped:.0f} points escaped the tank (expected 0)")
+    probes = read_probes(out)
+    up = scene["case"]["dimension"] - 1
+    region = scene["fluid"]["region"][0]
+    surface = region["origin"][up] + region["size"][up]
+    rho, dx = scene["fluid"]["density"], scene["fluid"]["dx"]
+    rho_g_h = rho * GRAVITY * region["size"][up]
+    for probe in scene["probe"]:
+        name = probe["name"]
+        if probe["kind"] == "pressure":
+            expected = rho * GRAVITY * (surface - probe["position"][up])
+            h = probe.get("radius", 0.0) or 2.5 * dx
+            x, lo = probe["position"], region["origin"]
+            inside = all(lo[a] + h <= x[a] <= lo[a] + region["size"][a] - h for a in range(up + 1))
+            bound = 0.01 * rho_g_h if inside else rho * GRAVITY * 3 * h / 8
+            worst = max(abs(p - expected) for p in probes[f"{name}.p [Pa]"])
+            c.expect(worst < bound,
+                     f"{name}: max |p − ρg·d| {worst:.1f} Pa < {bound:.1f} Pa "
+                     f"({'1 % of ρgH' if inside else 'ρg·3h/8: the ball is cut'}); "
+                     f"ρg·d = {expected:.1f} Pa")
+        elif probe["kind"] == "elevation":
+            worst = max(abs(e - surface) for e in probes[f"{name}.eta [m]"])
+            c.expect(worst < 0.25 * dx, f"{name}: max |η − H| {1000 * worst:.2f} mm < dx/4")
+        elif probe["kind"] == "force":
+            floor = math.prod(region["size"][:up])
+            expected = -rho_g_h * floor
+            force = probes[f"{name}.f{'xyz'[up]} [N]"][-1]
+            c.expect(abs(force / expected - 1) < 0.01,
+                     f"{name}.f{'xyz'[up]} at the end {force:.2f} N against −ρgH·A = "
+                     f"{expected:.2f} N within 1 %")
+
+
 def sloshing_baffle(c, scene, out, source, build):
     """Completed; coupling converged; volume kept; the dry first mode against the cantilever
     strip; the hydrostatic pressure at t = 0; D1 moved, and stayed within the linear range."""
@@ -415,21 +457,25 @@ def sloshing_baffle(c, scene, out, source, build):
              f"D1 max |ux| {1000 * peak:.3f} mm < {1000 * height:.1f} mm (the baffle's height)")
 
 
-def wedge_geometry(source):
-    """Keel (x, y) and deadrise β [rad] of pipelines/wedge_entry/wedge.geo (Points 1 and 2: the
-    keel and the right chine)."""
-    text = (source / "pipelines/wedge_entry/wedge.geo").read_text()
-    points = {int(n): (float(x), float(y)) for n, x, y in
-              re.findall(r"Point\((\d+)\) = \{([-\d.e]+), ([-\d.e]+), 0\}", text)}
-    (x1, y1), (x2, y2) = points[1], points[2]
-    return y1, math.atan2(y2 - y1, x2 - x1)
+def wedge_geometry(source, case="wedge_entry"):
+    """Keel height and deadrise β [rad] of pipelines/<case>/wedge.geo (Points 1 and 2: the keel
+    and the right chine; (x, y) in 2-D, (x, y, z) in 3-D with the section in x–z), and the
+    prism's length along y in 3-D (its Extrude), 1 m (per metre) in 2-D."""
+    text = (source / f"pipelines/{case}/wedge.geo").read_text()
+    number = r"([-\d.e]+)"
+    points = {int(m[0]): tuple(float(v) for v in m[1:] if v) for m in
+              re.findall(rf"Point\((\d+)\) = \{{{number}, {number}, {number}\}}", text)}
+    (x1, *up1), (x2, *up2) = points[1], points[2]
+    keel, chine = (up1[0], up2[0]) if up1[1] == 0 and up2[1] == 0 else (up1[1], up2[1])
+    extrude = re.search(rf"Extrude \{{0, {number}, 0\}}", text)
+    return keel, math.atan2(chine - keel, x2 - x1), float(extrude[1]) if extrude else 1.0
 
 
 def wedge_momentum_model(v0, mass, keel, surface, beta, factor, t_end, rho):
     """Velocity [m/s] at t_end of a 2-D wedge by momentum theory: d/dt[(M + ρπc²/2)V] = −Mg +
     ρg ζ²/tan β (weight, buoyancy), c = factor·ζ/tan β the wetted half-width at penetration ζ:
     factor 1 is von Kármán's (the still-water width, too narrow), π/2 Wagner's (the splash-up
-    width, too wide at 25°); the true wetted width lies between them."""
+    width, too wide at 25°); the true wetted width lies between them. M per metre."""
     dt, t, z, momentum = 1e-5, 0.0, keel, mass * v0
     v = v0
     while t < t_end:
@@ -442,19 +488,21 @@ def wedge_momentum_model(v0, mass, keel, surface, beta, factor, t_end, rho):
     return v
 
 
-def wedge_entry(c, scene, out, source, build):
-    """A free-falling elastic wedge (structure.free_translation): the exact fall before contact,
-    the fluid's impulse equal to the body's momentum change, and the velocity after impact between
-    the von Kármán and Wagner momentum models; reports the pressure peak and the deformation."""
+def check_wedge_drop(c, scene, out, source, build, case, between_models):
+    """A free-falling elastic wedge (structure.free_translation), 2-D section or 3-D prism: the
+    exact fall before contact, the fluid's impulse equal to the body's momentum change, and the
+    velocity after impact against the von Kármán and Wagner momentum models (per metre of the
+    prism in 3-D: strip theory); reports the pressure peak and the deformation."""
     check_run(c, scene, out, build)
     check_coupling(c, out, build)
     results = out / "results.h5"
     attributes = inspect(build, results)
     attributes = attributes.get("attributes", attributes)
     mass = attributes["body_mass"]
-    keel, beta = wedge_geometry(source)
+    keel, beta, length = wedge_geometry(source, case)
+    up = scene["case"]["dimension"] - 1
     region = scene["fluid"]["region"][0]
-    surface = region["origin"][1] + region["size"][1]
+    surface = region["origin"][up] + region["size"][up]
     rho, dx = scene["fluid"]["density"], scene["fluid"]["dx"]
     v0 = scene["structure"]["initial_velocity"]
     t = dataset(build, results, "/modal/time")
@@ -463,26 +511,30 @@ def wedge_entry(c, scene, out, source, build):
     # Before the fluid can feel the wedge (keel above the surface by more than h = 2.5 dx): the
     # exact parabola (CFPI integrates the translation's constant load exactly).
     air = [k for k in range(len(t)) if keel + z[k] > surface + 2.5 * dx]
-    fall = max(abs(z[k] - (v0 * t[k] - 0.5 * GRAVITY * t[k] ** 2)) for k in air)
+    fall = max((abs(z[k] - (v0 * t[k] - 0.5 * GRAVITY * t[k] ** 2)) for k in air), default=0)
     c.expect(len(air) > 0 and fall < 1e-9,
              f"free fall through the air ({len(air)} rows): max error {fall:.2e} m < 1e-9 m")
-    # Momentum: ∫(F_y − Mg) dt over the probe rows (the force probe "wedge") = M Δv; exact when a
+    # Momentum: ∫(F_up − Mg) dt over the probe rows (the force probe "wedge") = M Δv; exact when a
     # row ends every step (the load is linear in each step); a step cut short for an output time
     # leaves a row out (0.44 % at dx = 0.01 m). A wrong mass, thickness or weight is off by O(1).
     probes = read_probes(out)
-    tp, fy = probes["t [s]"], probes["wedge.fy [N]"]
-    impulse = sum(0.5 * (fy[k] + fy[k + 1] - 2 * mass * GRAVITY) * (tp[k + 1] - tp[k])
+    tp, fup = probes["t [s]"], probes[f"wedge.f{'xyz'[up]} [N]"]
+    impulse = sum(0.5 * (fup[k] + fup[k + 1] - 2 * mass * GRAVITY) * (tp[k + 1] - tp[k])
                   for k in range(len(tp) - 1))
     change = mass * (v[-1] - v[0])
     c.expect(abs(impulse - change) < 1e-2 * abs(change),
-             f"impulse of the fluid and the weight {impulse:.4f} N·s/m = M Δv {change:.4f} N·s/m "
+             f"impulse of the fluid and the weight {impulse:.4f} N·s = M Δv {change:.4f} N·s "
              f"(within 1 %)")
-    # After the impact: between the momentum models.
-    karman = wedge_momentum_model(v0, mass, keel, surface, beta, 1.0, t[-1], rho)
-    wagner = wedge_momentum_model(v0, mass, keel, surface, beta, math.pi / 2, t[-1], rho)
-    c.expect(min(karman, wagner) <= v[-1] <= max(karman, wagner),
-             f"velocity at {t[-1]} s {v[-1]:.3f} m/s between von Kármán {karman:.3f} and Wagner "
-             f"{wagner:.3f} m/s")
+    # After the impact: between the momentum models (strip theory per metre in 3-D).
+    karman = wedge_momentum_model(v0, mass / length, keel, surface, beta, 1.0, t[-1], rho)
+    wagner = wedge_momentum_model(v0, mass / length, keel, surface, beta, math.pi / 2, t[-1], rho)
+    inside = min(karman, wagner) <= v[-1] <= max(karman, wagner)
+    text = (f"velocity at {t[-1]} s {v[-1]:.3f} m/s between von Kármán {karman:.3f} and Wagner "
+            f"{wagner:.3f} m/s")
+    if between_models:
+        c.expect(inside, text)
+    else:
+        print(f"      {text}: {'yes' if inside else 'no'} (reported, not checked at this dx)")
     peak = attributes["max_structure_pressure"]
     contact = max((abs(v[k]) for k in range(len(t)) if keel + z[k] > surface), default=abs(v0))
     wagner_cp = math.pi ** 2 / (4 * math.tan(beta) ** 2)
@@ -490,6 +542,19 @@ def wedge_entry(c, scene, out, source, build):
           f"contact speed {contact:.3f} m/s (Wagner's small-deadrise limit {wagner_cp:.2f}); "
           f"largest deformation {1000 * attributes['max_structure_deformation']:.3f} mm")
     c.expect(peak > 0, f"a pressure peak on the wedge ({peak:.0f} Pa > 0)")
+    c.expect(attributes["max_structure_deformation"] > 0,
+             f"the wedge deforms ({attributes['max_structure_deformation']:.2e} m > 0)")
+
+
+def wedge_entry(c, scene, out, source, build):
+    """The 2-D wedge section (paper §4.6): check_wedge_drop, velocity between the models."""
+    check_wedge_drop(c, scene, out, source, build, "wedge_entry", between_models=True)
+
+
+def wedge_entry_3d(c, scene, out, source, build):
+    """The 3-D wedge prism: check_wedge_drop; at the smoke's dx = 0.1 m (the half-breadth 4.7 dx)
+    the velocity against the strip models is reported, not checked."""
+    check_wedge_drop(c, scene, out, source, build, "wedge_entry_3d", between_models=False)
 
 
 def oil_beam_rolling_tank(c, scene, out, source, build):
@@ -546,9 +611,11 @@ def main():
     if len(sys.argv) != 6:
         sys.exit(__doc__)
     case, out, scene_file, source, build = sys.argv[1:]
-    checks = {f.__name__: f for f in (dambreak_koshizuka, dambreak_lobovsky, sloshing_linear,
+    case = {"hydrostatic_tank_3d": "hydrostatic_tank"}.get(case, case)
+    checks = {f.__name__: f for f in (hydrostatic_tank, dambreak_koshizuka, dambreak_lobovsky, sloshing_linear,
                                       sway_sloshing, elastic_gate, dambreak_elastic_plate,
-                                      sloshing_baffle, wedge_entry, oil_beam_rolling_tank,
+                                      sloshing_baffle, wedge_entry, wedge_entry_3d,
+                                      oil_beam_rolling_tank,
                                       dambreak_cantilever, rhee_sloshing)}
     if case not in checks:
         sys.exit(f"check_flow_smoke.py: unknown case {case!r}; expected one of {sorted(checks)}")
