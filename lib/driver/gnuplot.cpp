@@ -27,7 +27,7 @@ void write_curve_dat(const std::filesystem::path& file, const Curve& curve) {
 std::string plot_header(const std::string& png, const std::string& title,
                         const std::string& x_label, const std::string& y_label) {
   return fmt::format(
-      "set terminal pngcairo size 960,560 font ',10'\nset output {}\nset title {}\nset grid\n"
+      "set terminal pngcairo noenhanced size 960,560 font ',10'\nset output {}\nset title {}\nset grid\n"
       "set key top left\nset xlabel {}\nset ylabel {}\n",
       gnuplot_quoted(png), gnuplot_quoted(title), gnuplot_quoted(x_label), gnuplot_quoted(y_label));
 }

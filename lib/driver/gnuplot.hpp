@@ -15,7 +15,8 @@ std::string gnuplot_quoted(const std::string& s);
 /// The curve as "t v" lines (full precision) for gnuplot; InputError when it cannot be written.
 void write_curve_dat(const std::filesystem::path& file, const Curve& curve);
 
-/// The lines that start one PNG plot: terminal, output, title, grid, axis labels.
+/// The lines that start one PNG plot: terminal, output, title, grid, axis labels. Text is taken
+/// literally (noenhanced: "p_low" and "Koshizuka & Oka" are no markup).
 std::string plot_header(const std::string& png, const std::string& title,
                         const std::string& x_label, const std::string& y_label);
 

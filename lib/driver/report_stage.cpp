@@ -190,7 +190,7 @@ std::string plot_script(const std::filesystem::path& folder, const RunData& run,
     write_curve_dat(folder / "data" / "ppe_iterations.dat", run.ppe_iterations);
     write_curve_dat(folder / "data" / "volume_drift.dat", run.volume_drift);
     script +=
-        "set terminal pngcairo size 960,900 font ',10'\nset output 'monitors.png'\nunset title\n"
+        "set terminal pngcairo noenhanced size 960,900 font ',10'\nset output 'monitors.png'\nunset title\n"
         "set multiplot layout 3,1\nset grid\nunset key\nset xlabel 't [s]'\n"
         "set ylabel 'Δt [s]'\nset logscale y\nplot 'data/dt.dat' using 1:2 with steps\n"
         "unset logscale y\nset ylabel 'PPE iterations'\n"

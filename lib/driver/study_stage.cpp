@@ -13,9 +13,11 @@
 #include "core/errors.hpp"
 #include "core/log.hpp"
 #include "core/text.hpp"
+#include "core/version.hpp"
 #include "driver/gnuplot.hpp"
 #include "driver/metrics_json.hpp"
 #include "driver/report_stage.hpp"
+#include "driver/simulate_stage.hpp"
 #include "io/artefact.hpp"
 #include "io/scene.hpp"
 #include "io/schema.hpp"
@@ -134,8 +136,24 @@ double time_to_solution(const RunOutcome& r) {
   return r.simulate_seconds + r.modes_seconds;
 }
 
+/// Refuses results made with other settings than the study now gives the run (a run whose
+/// remake failed keeps its old results.h5); another tool version is only a warning.
+void check_run_is_current(const io::ArtefactReader& reader, const io::Scene& scene,
+                          const std::string& run_name, const std::filesystem::path& results,
+                          const std::filesystem::path& study_file) {
+  const io::Provenance& p = reader.provenance();
+  if (p.parameters != simulate_parameters(scene, !scene.has("structure")))
+    input_error(
+        "{}: run {} is stale: {} was made with other scene parameters than the run's settings "
+        "give now (did its last make fail?); make it again with make -C {}",
+        study_file.string(), run_name, results.string(), study_file.parent_path().string());
+  if (p.tool_version != tool_version())
+    spdlog::warn("{}: run {} was made by tool version {}, this is {}", stage_name, run_name,
+                 p.tool_version, tool_version());
+}
+
 RunOutcome read_outcome(const Study& study, const StudySeries& series, const StudyRun& run,
-                        const std::filesystem::path& runs) {
+                        const io::Scene& scene, const std::filesystem::path& runs) {
   RunOutcome r;
   r.run = &run;
   r.folder = runs / series.name / run.name;
@@ -146,6 +164,7 @@ RunOutcome read_outcome(const Study& study, const StudySeries& series, const Stu
                 study.file.parent_path().string());
   {
     const io::ArtefactReader reader(results, io::results_schema());
+    check_run_is_current(reader, scene, series.name + "/" + run.name, results, study.file);
     r.status = reader.string_attribute(ra::run_status).value_or("?");
     r.simulate_seconds = reader.number_attribute(ra::wall_seconds).value_or(nan);
     r.steps = static_cast<long long>(reader.number_attribute(ra::steps).value_or(0));
@@ -166,8 +185,8 @@ std::vector<RunOutcome> collect_series(const Study& study, const StudySeries& se
                                        const std::filesystem::path& runs) {
   std::vector<RunOutcome> out;
   for (const StudyRun& run : series.runs) {
-    RunOutcome r = read_outcome(study, series, run, runs);
     const io::Scene scene = io::Scene::load(study.scene, run.set);
+    RunOutcome r = read_outcome(study, series, run, scene, runs);
     const auto [t0, t1] = report_window_bounds(scene);
     const std::string context =
         fmt::format("{}: run {}/{}", study.file.string(), series.name, run.name);

@@ -50,6 +50,19 @@ PY
 second="$(make_study)" || { echo "$second"; fail "the second make failed"; }
 if grep -Eq "\(re\)making" <<<"$second"; then echo "$second"; fail "a second make reran a stage"; fi
 
+# A run whose settings changed after it was made (its remake failed, or was not made) is refused
+# by the table, not tabulated with its old results.
+changed="$work/changed.toml"
+sed -e 's/fluid.dx=0.006"\]/fluid.dx=0.0065"]/' \
+    -e "s|^scene = \"../../|scene = \"$source_dir/pipelines/|" "$study/study.smoke.toml" > "$changed"
+set +e
+message="$("$build_dir/stages/fsi-study/fsi-study" "$changed" --runs "$work" -o "$work/changed/study.json" 2>&1)"
+code=$?
+set -e
+[ "$code" -eq 2 ] || { echo "$message"; fail "a stale run was tabulated (exit $code)"; }
+grep -q "run resolution/dx6 is stale" <<<"$message" || { echo "$message"; fail "no stale message"; }
+[ ! -e "$work/changed" ] || fail "a refused table left $work/changed"
+
 bad="$work/bad.toml"
 sed -e 's/fluid.dx=0.006"\]/fluid.dx=-1"]/' \
     -e "s|^scene = \"../../|scene = \"$source_dir/pipelines/|" "$study/study.smoke.toml" > "$bad"
