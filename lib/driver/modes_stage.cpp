@@ -163,8 +163,8 @@ void write_solver_attributes(io::ArtefactWriter& w, const modal::ModeSet& modes)
   w.set_attribute("shift_rad2_s2", s.shift);
   w.set_attribute("lanczos_restarts", static_cast<std::int64_t>(s.iterations));
   w.set_attribute("operator_applications", static_cast<std::int64_t>(s.op_applications));
-  w.set_attribute("factorisation_seconds", s.factorisation_seconds);
-  w.set_attribute("lanczos_seconds", s.lanczos_seconds);
+  w.set_attribute(io::modes_attr::factorisation_seconds, s.factorisation_seconds);
+  w.set_attribute(io::modes_attr::lanczos_seconds, s.lanczos_seconds);
   w.set_attribute("max_relative_residual",
                   modes.residuals.size() ? modes.residuals.maxCoeff() : 0.0);
   w.set_attribute("max_orthogonality_error", modes.orthogonality_error);

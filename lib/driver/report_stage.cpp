@@ -60,23 +60,27 @@ struct RunData {
   io::MatrixRM modal;  ///< n_rows × n_modes (empty: no structure)
 };
 
+/// The probe columns of a results artefact (none when it has no probes).
+void read_probes(const io::ArtefactReader& r, RunData& d) {
+  if (!r.has(ds::probe_time)) return;
+  d.columns = split_csv_fields(r.string_attribute(ra::probe_columns).value_or(""));
+  const std::vector<double> t = r.read_values(ds::probe_time);
+  const io::MatrixRM values = r.read_matrix(ds::probe_values);
+  for (Eigen::Index c = 0; c < values.cols(); ++c) {
+    Curve curve;
+    curve.t = t;
+    for (Eigen::Index k = 0; k < values.rows(); ++k) curve.v.push_back(values(k, c));
+    d.probes.push_back(std::move(curve));
+  }
+  if (d.columns.size() != d.probes.size())
+    input_error("{}: {} probe column names for {} columns", r.path().string(), d.columns.size(),
+                d.probes.size());
+}
+
 RunData read_run(const std::filesystem::path& results) {
   const io::ArtefactReader r(results, io::results_schema());
   RunData d;
-  if (r.has(ds::probe_time)) {
-    d.columns = split_csv_fields(r.string_attribute(ra::probe_columns).value_or(""));
-    const std::vector<double> t = r.read_values(ds::probe_time);
-    const io::MatrixRM values = r.read_matrix(ds::probe_values);
-    for (Eigen::Index c = 0; c < values.cols(); ++c) {
-      Curve curve;
-      curve.t = t;
-      for (Eigen::Index k = 0; k < values.rows(); ++k) curve.v.push_back(values(k, c));
-      d.probes.push_back(std::move(curve));
-    }
-    if (d.columns.size() != d.probes.size())
-      input_error("{}: {} probe column names for {} columns", results.string(), d.columns.size(),
-                  d.probes.size());
-  }
+  read_probes(r, d);
   if (r.has(ds::monitor_time)) {
     const std::vector<double> t = r.read_values(ds::monitor_time);
     d.dt = {t, r.read_values(ds::monitor_dt)};
@@ -190,7 +194,8 @@ std::string plot_script(const std::filesystem::path& folder, const RunData& run,
     write_curve_dat(folder / "data" / "ppe_iterations.dat", run.ppe_iterations);
     write_curve_dat(folder / "data" / "volume_drift.dat", run.volume_drift);
     script +=
-        "set terminal pngcairo noenhanced size 960,900 font ',10'\nset output 'monitors.png'\nunset title\n"
+        "set terminal pngcairo noenhanced size 960,900 font ',10'\nset output "
+        "'monitors.png'\nunset title\n"
         "set multiplot layout 3,1\nset grid\nunset key\nset xlabel 't [s]'\n"
         "set ylabel 'Δt [s]'\nset logscale y\nplot 'data/dt.dat' using 1:2 with steps\n"
         "unset logscale y\nset ylabel 'PPE iterations'\n"
@@ -269,11 +274,12 @@ Curve read_reference_csv(const std::filesystem::path& file, int time_column, int
   return c;
 }
 
-Curve read_probe_column(const std::filesystem::path& results, const std::string& column) {
-  RunData run = read_run(results);
+Curve read_probe_column(const io::ArtefactReader& results, const std::string& column) {
+  RunData run;
+  read_probes(results, run);
   const auto it = std::find(run.columns.begin(), run.columns.end(), column);
   if (it == run.columns.end())
-    input_error("{}: no probe column \"{}\" (columns: {})", results.string(), column,
+    input_error("{}: no probe column \"{}\" (columns: {})", results.path().string(), column,
                 join(run.columns, ", "));
   return std::move(run.probes[static_cast<std::size_t>(it - run.columns.begin())]);
 }

@@ -16,6 +16,7 @@
 #include <filesystem>
 #include <vector>
 
+#include "io/artefact.hpp"
 #include "io/scene.hpp"
 
 namespace hm::driver {
@@ -46,9 +47,9 @@ CurveMetrics compare_curves(const Curve& run, const Curve& reference, double win
 Curve read_reference_csv(const std::filesystem::path& file, int time_column, int value_column,
                          double scale, double time_scale, double time_offset);
 
-/// The probe column `column` ("tip.ux [m]") of a results artefact; InputError naming the
+/// The probe column `column` ("tip.ux [m]") of an open results artefact; InputError naming the
 /// columns it has when there is no such column.
-Curve read_probe_column(const std::filesystem::path& results, const std::string& column);
+Curve read_probe_column(const io::ArtefactReader& results, const std::string& column);
 
 /// The reference curve of the scene's [[report.compare]] entry for `column` labelled `label`;
 /// InputError listing the entries when there is none.

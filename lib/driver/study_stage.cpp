@@ -132,6 +132,12 @@ struct RunOutcome {
   double order = nan;  ///< from the previous run of the series
 };
 
+/// A series' runs, and the reference they are measured against (empty without one).
+struct SeriesOutcome {
+  std::vector<RunOutcome> runs;
+  Curve reference;
+};
+
 double time_to_solution(const RunOutcome& r) {
   return r.simulate_seconds + r.modes_seconds;
 }
@@ -169,43 +175,44 @@ RunOutcome read_outcome(const Study& study, const StudySeries& series, const Stu
     r.simulate_seconds = reader.number_attribute(ra::wall_seconds).value_or(nan);
     r.steps = static_cast<long long>(reader.number_attribute(ra::steps).value_or(0));
     r.points = static_cast<long long>(reader.number_attribute(ra::points).value_or(0));
+    r.probe = read_probe_column(reader, study.column);
   }
   if (const auto modes = r.folder / "modes.h5"; std::filesystem::exists(modes)) {
     const io::ArtefactReader reader(modes, io::modes_schema());
-    r.modes_seconds = reader.number_attribute("factorisation_seconds").value_or(0.0) +
-                      reader.number_attribute("lanczos_seconds").value_or(0.0);
+    r.modes_seconds = reader.number_attribute(io::modes_attr::factorisation_seconds).value_or(0.0) +
+                      reader.number_attribute(io::modes_attr::lanczos_seconds).value_or(0.0);
   }
-  r.probe = read_probe_column(results, study.column);
   parse_number(run.value, r.value);
   return r;
 }
 
-/// The metrics of every run of a series: against the reference and against the last run.
-std::vector<RunOutcome> collect_series(const Study& study, const StudySeries& series,
-                                       const std::filesystem::path& runs) {
-  std::vector<RunOutcome> out;
+/// The metrics of every run of a series: against the reference and against the last run. The
+/// reference is read once, from the case's scene with the last run's settings.
+SeriesOutcome collect_series(const Study& study, const StudySeries& series,
+                             const std::filesystem::path& runs) {
+  SeriesOutcome out;
+  std::vector<std::pair<double, double>> windows;  // report.window of each run [s]
   for (const StudyRun& run : series.runs) {
     const io::Scene scene = io::Scene::load(study.scene, run.set);
-    RunOutcome r = read_outcome(study, series, run, scene, runs);
-    const auto [t0, t1] = report_window_bounds(scene);
+    out.runs.push_back(read_outcome(study, series, run, scene, runs));
+    windows.push_back(report_window_bounds(scene));
+    if (&run == &series.runs.back() && !study.reference.empty())
+      out.reference = report_reference(scene, study.column, study.reference);
+  }
+  const RunOutcome& last = out.runs.back();
+  for (std::size_t k = 0; k < out.runs.size(); ++k) {
+    RunOutcome& r = out.runs[k];
+    const auto [t0, t1] = windows[k];
     const std::string context =
-        fmt::format("{}: run {}/{}", study.file.string(), series.name, run.name);
+        fmt::format("{}: run {}/{}", study.file.string(), series.name, r.run->name);
     if (!study.reference.empty())
       r.vs_reference =
-          compare_curves(r.probe, report_reference(scene, study.column, study.reference), t0, t1,
-                         context + " against " + study.reference);
-    out.push_back(std::move(r));
-  }
-  const Curve& last = out.back().probe;
-  const auto [t0, t1] = report_window_bounds(io::Scene::load(study.scene, series.runs.back().set));
-  for (std::size_t k = 0; k < out.size(); ++k) {
-    out[k].vs_last =
-        compare_curves(out[k].probe, last, t0, t1,
-                       fmt::format("{}: run {}/{} against run {}", study.file.string(), series.name,
-                                   out[k].run->name, out.back().run->name));
-    if (k > 0 && k + 1 < out.size())
-      out[k].order = observed_order(out[k - 1].value, out[k - 1].vs_last.rms_relative, out[k].value,
-                                    out[k].vs_last.rms_relative);
+          compare_curves(r.probe, out.reference, t0, t1, context + " against " + study.reference);
+    r.vs_last = compare_curves(r.probe, last.probe, windows.back().first, windows.back().second,
+                               context + " against run " + last.run->name);
+    if (k > 0 && k + 1 < out.runs.size())
+      r.order = observed_order(out.runs[k - 1].value, out.runs[k - 1].vs_last.rms_relative, r.value,
+                               r.vs_last.rms_relative);
   }
   return out;
 }
@@ -220,14 +227,14 @@ std::string unsigned_percent(double relative) {
 }
 
 std::string series_markdown(const Study& study, const StudySeries& series,
-                            const std::vector<RunOutcome>& outcomes) {
+                            const SeriesOutcome& outcome) {
   const std::string last = series.runs.back().name;
   std::string md = fmt::format(
       "## {} (`{}`)\n\n| run | {} | points | steps | status | time to solution [s] | of it "
       "modes [s] | peak | peak error | Δt of peak [s] | RMS / \\|ref. peak\\| | RMS vs {} | "
       "order |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       series.name, series.parameter, series.parameter, last);
-  for (const RunOutcome& r : outcomes) {
+  for (const RunOutcome& r : outcome.runs) {
     const bool has_ref = !study.reference.empty();
     md += fmt::format(
         "| {} | {} | {} | {} | {} | {:.1f} | {:.2f} | {:.4g} | {} | {} | {} | {} | {} |\n",
@@ -242,9 +249,9 @@ std::string series_markdown(const Study& study, const StudySeries& series,
 }
 
 nlohmann::ordered_json series_json(const Study& study, const StudySeries& series,
-                                   const std::vector<RunOutcome>& outcomes) {
+                                   const SeriesOutcome& outcome) {
   nlohmann::ordered_json runs = nlohmann::ordered_json::array();
-  for (const RunOutcome& r : outcomes) {
+  for (const RunOutcome& r : outcome.runs) {
     nlohmann::ordered_json j = {{"name", r.run->name},
                                 {"value", r.run->value},
                                 {"set", r.run->set},
@@ -268,8 +275,7 @@ nlohmann::ordered_json series_json(const Study& study, const StudySeries& series
 /// Two plots per series: time to solution against the errors (log–log), and the probe of every
 /// run against the reference.
 std::string series_plots(const Study& study, const StudySeries& series,
-                         const std::vector<RunOutcome>& outcomes,
-                         const std::filesystem::path& folder) {
+                         const SeriesOutcome& outcome, const std::filesystem::path& folder) {
   const auto data = folder / "data";
   std::filesystem::create_directories(data);
   const std::string cost_file = "data/" + series.name + ".cost.dat";
@@ -277,7 +283,7 @@ std::string series_plots(const Study& study, const StudySeries& series,
     std::ofstream out(folder / cost_file);
     out.precision(17);
     out << "# run time_to_solution_s rms_vs_reference_percent rms_vs_last_percent\n";
-    for (const RunOutcome& r : outcomes) {
+    for (const RunOutcome& r : outcome.runs) {
       const bool is_last = r.run == &series.runs.back();
       out << r.run->name << ' ' << time_to_solution(r) << ' '
           << (study.reference.empty() ? nan : 100 * r.vs_reference.rms_relative) << ' '
@@ -303,7 +309,7 @@ std::string series_plots(const Study& study, const StudySeries& series,
   script += "plot " + join(lines, ", \\\n     ") + "\nunset logscale xy\n";
 
   std::vector<std::string> curves;
-  for (const RunOutcome& r : outcomes) {
+  for (const RunOutcome& r : outcome.runs) {
     const std::string file = fmt::format("data/{}.{}.dat", series.name, r.run->name);
     write_curve_dat(folder / file, r.probe);
     curves.push_back(fmt::format(
@@ -312,9 +318,7 @@ std::string series_plots(const Study& study, const StudySeries& series,
   }
   if (!study.reference.empty()) {
     const std::string file = fmt::format("data/{}.reference.dat", series.name);
-    write_curve_dat(folder / file,
-                    report_reference(io::Scene::load(study.scene, series.runs.back().set),
-                                     study.column, study.reference));
+    write_curve_dat(folder / file, outcome.reference);
     curves.push_back(fmt::format("{} using 1:2 with linespoints pt 7 ps 0.6 title {}",
                                  gnuplot_quoted(file), gnuplot_quoted(study.reference)));
   }
@@ -406,7 +410,7 @@ double observed_order(double value0, double error0, double value1, double error1
 
 void run_study_stage(const Study& study, const std::filesystem::path& runs,
                      const std::filesystem::path& output) {
-  std::vector<std::vector<RunOutcome>> outcomes;
+  std::vector<SeriesOutcome> outcomes;
   for (const auto& series : study.series) outcomes.push_back(collect_series(study, series, runs));
 
   std::string md = fmt::format(

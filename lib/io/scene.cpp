@@ -81,11 +81,11 @@ std::string format_value(const toml::node& node) {
 
 // ---- --set KEY=VALUE ----------------------------------------------------------------------------
 
-/// VALUE as a TOML value; a bare word that is no TOML value is taken as a string.
-toml::node_view<toml::node> override_value(toml::table& holder, const std::string& setting,
-                                           const std::string& value) {
+/// VALUE as the TOML value of the key "v" of a table; a bare word that is no TOML value is
+/// taken as a string.
+toml::table parsed_override_value(const std::string& setting, const std::string& value) {
   try {
-    holder = toml::parse("v = " + value);
+    return toml::parse("v = " + value);
   } catch (const toml::parse_error&) {
     const bool bare_word = !value.empty() && value.find_first_of("\"'[]{}=\n") == std::string::npos;
     if (!bare_word)
@@ -93,9 +93,8 @@ toml::node_view<toml::node> override_value(toml::table& holder, const std::strin
           "--set {}: '{}' is not a TOML value (a number, true/false, \"text\", or an "
           "array such as [0.0,0.01])",
           setting, value);
-    holder = toml::table{{"v", value}};
+    return toml::table{{"v", value}};
   }
-  return holder["v"];
 }
 
 /// One segment of a --set path: a key, or a key with an index into an array of tables.
@@ -156,8 +155,8 @@ void apply_override(toml::table& root, const std::string& setting,
   if (leaf_index) input_error("--set {}: the last part of the key cannot have an index", setting);
   if (const toml::node* existing = table->get(leaf); existing && existing->is_table())
     input_error("--set {}: '{}' is a section, not a key", setting, key);
-  toml::table holder;
-  table->insert_or_assign(leaf, *override_value(holder, setting, value).node());
+  const toml::table parsed = parsed_override_value(setting, value);
+  table->insert_or_assign(leaf, *parsed.get("v"));
 }
 
 class Validator {

@@ -132,6 +132,12 @@ inline constexpr const char* body_position = "/body/position";
 inline constexpr const char* body_velocity = "/body/velocity";
 }  // namespace ds
 
+/// Root attributes of hydromodal.modes read by other stages (besides the provenance ones).
+namespace modes_attr {
+inline constexpr const char* factorisation_seconds = "factorisation_seconds";  ///< [s]
+inline constexpr const char* lanczos_seconds = "lanczos_seconds";              ///< [s]
+}  // namespace modes_attr
+
 /// Root attributes of hydromodal.results (besides the provenance ones).
 namespace results_attr {
 inline constexpr const char* run_status = "run_status";  ///< "completed" or "diverged"
