@@ -41,19 +41,40 @@ DofMap DofMap::clamp_groups(const mesh::StructureMesh& mesh, std::span<const std
 }
 
 Eigen::SparseMatrix<double> DofMap::reduce(const Eigen::SparseMatrix<double>& full) const {
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(full.nonZeros()));
+  // Columns and rows keep their order (free_index_ is increasing), so the compressed arrays are
+  // filled directly, column by column.
+  std::vector<int> outer{0}, inner;
+  std::vector<double> values;
+  outer.reserve(static_cast<std::size_t>(free_count()) + 1);
+  inner.reserve(static_cast<std::size_t>(full.nonZeros()));
+  values.reserve(static_cast<std::size_t>(full.nonZeros()));
   for (Eigen::Index col = 0; col < full.outerSize(); ++col) {
-    const Eigen::Index c = free_index_[static_cast<std::size_t>(col)];
-    if (c < 0) continue;
+    if (free_index_[static_cast<std::size_t>(col)] < 0) continue;
     for (Eigen::SparseMatrix<double>::InnerIterator it(full, col); it; ++it) {
       const Eigen::Index r = free_index_[static_cast<std::size_t>(it.row())];
-      if (r >= 0) entries.emplace_back(static_cast<int>(r), static_cast<int>(c), it.value());
+      if (r < 0) continue;
+      inner.push_back(static_cast<int>(r));
+      values.push_back(it.value());
     }
+    outer.push_back(static_cast<int>(inner.size()));
   }
-  Eigen::SparseMatrix<double> reduced(free_count(), free_count());
-  reduced.setFromTriplets(entries.begin(), entries.end());
-  return reduced;
+  return Eigen::Map<const Eigen::SparseMatrix<double>>(free_count(), free_count(),
+                                                       static_cast<Eigen::Index>(inner.size()),
+                                                       outer.data(), inner.data(), values.data());
+}
+
+Eigen::VectorXd DofMap::free_values(const Eigen::VectorXd& full) const {
+  Eigen::VectorXd out(free_count());
+  for (Eigen::Index i = 0; i < free_count(); ++i)
+    out[i] = full[free_dofs_[static_cast<std::size_t>(i)]];
+  return out;
+}
+
+Eigen::VectorXd DofMap::full_values(const Eigen::VectorXd& free) const {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(full_count());
+  for (Eigen::Index i = 0; i < free_count(); ++i)
+    out[free_dofs_[static_cast<std::size_t>(i)]] = free[i];
+  return out;
 }
 
 Eigen::MatrixXd DofMap::reduce(const Eigen::MatrixXd& full) const {

@@ -40,6 +40,10 @@ class DofMap {
   Eigen::MatrixXd reduce(const Eigen::MatrixXd& full) const;
   /// Full vectors with the free entries from `reduced` and zeros at clamped DOFs.
   Eigen::MatrixXd expand(const Eigen::MatrixXd& reduced) const;
+  /// The free entries of one full vector, and the full vector (zeros at clamped DOFs) of free
+  /// entries.
+  Eigen::VectorXd free_values(const Eigen::VectorXd& full) const;
+  Eigen::VectorXd full_values(const Eigen::VectorXd& free) const;
 
  private:
   int dim_;
