@@ -91,6 +91,26 @@ void NonlinearDynamics::start(double t, const Eigen::VectorXd& u, const Eigen::V
   trial_ = state_;
 }
 
+void NonlinearDynamics::restore(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+                                const Eigen::VectorXd& a, const Eigen::VectorXd& load,
+                                const EnergyBalance& energy, double start_energy) {
+  state_.time = t;
+  state_.u = u;
+  state_.v = v;
+  state_.a = a;
+  state_.load = load;
+  const BodyEvaluation e = internal_state(body_, options_, u, v);
+  state_.internal = e.force;
+  state_.damping_power = e.damping_power;
+  energy_ = energy;
+  energy_.kinetic = 0.5 * v.dot(body_.mass() * v);
+  energy_.strain = e.strain_energy;
+  energy_.numerical_dissipation =
+      energy_.external_work - energy_.damping - (energy_.kinetic + energy_.strain - start_energy);
+  start_energy_ = start_energy;
+  trial_ = state_;
+}
+
 Eigen::VectorXd NonlinearDynamics::newmark_acceleration(double dt,
                                                         const Eigen::VectorXd& u1) const {
   const DynamicState& s = state_;

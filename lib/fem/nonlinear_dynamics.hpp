@@ -78,6 +78,13 @@ class NonlinearDynamics {
   void start(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
              const Eigen::VectorXd& load);
 
+  /// Continues from a kept state (a checkpoint): displacement, velocity, acceleration and load
+  /// at time t, and the energy balance so far with the energy it started from [J].
+  void restore(double t, const Eigen::VectorXd& u, const Eigen::VectorXd& v,
+               const Eigen::VectorXd& a, const Eigen::VectorXd& load, const EnergyBalance& energy,
+               double start_energy);
+  double start_energy() const { return start_energy_; }
+
   /// Solves the step to t + dt with the external load going linearly to `load_end`, in
   /// substeps if Newton needs them; the state stays as it is until commit(). The report says
   /// whether every Newton solve converged, their iterations summed and the substeps taken.
