@@ -31,7 +31,7 @@
 # section brings simulate (on mesh.h5 when there is a structure, else fsi-simulate meshes the
 # [[wall]]s itself, as fsi-mesh needs a structure); [[load]]s without a [fluid] bring a
 # structure-only simulate on mesh.h5 and modes.h5; a [fluid] with a [structure] a coupled
-# simulate on mesh.h5 and mapped.h5.
+# simulate on mesh.h5, modes.h5 and mapped.h5.
 ROOT     := $(abspath $(dir $(lastword $(MAKEFILE_LIST)))/..)
 CASE     ?= $(notdir $(abspath $(CURDIR)))
 VARIANT  ?= full
@@ -75,11 +75,12 @@ $(OUT)/mapped.h5: $(OUT)/modes.h5 FORCE
 
 # The flow; probes.csv and snapshots/ (ParaView: snapshots/flow.xdmf) land next to results.h5.
 # A structure-only run takes the mode set as well (--modes).
-# A coupled run (a [fluid] and a [structure]) takes the mapped modes (--mapped).
+# A coupled run (a [fluid] and a [structure]) takes the mapped modes (--mapped) and the mode set
+# (--modes: a nonlinear structure model's interface, structure.model).
 COUPLED := $(and $(HAS_FLUID),$(HAS_STRUCTURE))
-$(OUT)/results.h5: $(if $(HAS_STRUCTURE),$(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),$(OUT)/modes.h5) $(if $(COUPLED),$(OUT)/mapped.h5) FORCE
+$(OUT)/results.h5: $(if $(HAS_STRUCTURE),$(OUT)/mesh.h5) $(if $(or $(STRUCTURE_RUN),$(COUPLED)),$(OUT)/modes.h5) $(if $(COUPLED),$(OUT)/mapped.h5) FORCE
 	@mkdir -p $(OUT)
-	$(FSI_SIMULATE) $(SCENE_ARGS) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) $(if $(STRUCTURE_RUN),--modes $(OUT)/modes.h5) $(if $(COUPLED),--mapped $(OUT)/mapped.h5) -o $@ --if-stale
+	$(FSI_SIMULATE) $(SCENE_ARGS) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) $(if $(or $(STRUCTURE_RUN),$(COUPLED)),--modes $(OUT)/modes.h5) $(if $(COUPLED),--mapped $(OUT)/mapped.h5) -o $@ --if-stale
 
 # The report (fsi-report): every probe against the scene's [[report.compare]] references, the
 # structure's response and the run monitors as PNG, the error metrics as metrics.md/.json.

@@ -9,6 +9,7 @@
 
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "coupling/linear_modal_model.hpp"
 #include "ldd/probes.hpp"
 
 namespace hm::coupling {
@@ -40,59 +41,61 @@ const char* to_string(CouplingScheme scheme) {
 template <int D>
 FlexibleBody<D>::FlexibleBody(std::string name, ModalSurface<D> modes, int wall,
                               const CouplingOptions& options, const ldd::WallMesh<D>& wall_mesh)
-    : name_(std::move(name)), modes_(std::move(modes)), wall_(wall), options_(options) {
-  const auto n = static_cast<Eigen::Index>(modes_.x0.size());
-  const Eigen::Index m = modes_.modes();
-  if (modes_.x0.size() != wall_mesh.vertices().size() || modes_.shapes.rows() != D * n)
+    : name_(std::move(name)),
+      modes_(std::make_shared<const ModalSurface<D>>(std::move(modes))),
+      wall_(wall),
+      options_(options) {
+  check_interface(wall_mesh);
+  model_ = std::make_unique<LinearModalModel<D>>(modes_);
+}
+
+template <int D>
+FlexibleBody<D>::FlexibleBody(std::string name, std::shared_ptr<const ModalSurface<D>> modes,
+                              std::unique_ptr<StructureModel<D>> model, int wall,
+                              const CouplingOptions& options, const ldd::WallMesh<D>& wall_mesh)
+    : name_(std::move(name)),
+      modes_(std::move(modes)),
+      model_(std::move(model)),
+      wall_(wall),
+      options_(options) {
+  HM_ASSERT(&model_->interface() == modes_.get(), "the model of body '{}' has another interface",
+            name_);
+  check_interface(wall_mesh);
+}
+
+template <int D>
+void FlexibleBody<D>::check_interface(const ldd::WallMesh<D>& wall_mesh) {
+  const ModalSurface<D>& modes = *modes_;
+  const auto n = static_cast<Eigen::Index>(modes.x0.size());
+  const Eigen::Index m = modes.modes();
+  if (modes.x0.size() != wall_mesh.vertices().size() || modes.shapes.rows() != D * n)
     input_error("flexible body '{}': {} mode-shape rows for {} vertices; its wall '{}' has {}",
-                name_, modes_.shapes.rows(), n, wall_mesh.name(), wall_mesh.vertices().size());
-  if (modes_.initial_velocity.size() != 0 && modes_.initial_velocity.size() != m)
+                name_, modes.shapes.rows(), n, wall_mesh.name(), wall_mesh.vertices().size());
+  if (modes.initial_velocity.size() != 0 && modes.initial_velocity.size() != m)
     input_error("flexible body '{}': {} initial modal velocities for {} modes", name_,
-                modes_.initial_velocity.size(), m);
-  if (modes_.omega.size() != m || modes_.zeta.size() != m)
+                modes.initial_velocity.size(), m);
+  if (modes.omega.size() != m || modes.zeta.size() != m)
     input_error("flexible body '{}': {} modes but {} frequencies and {} damping ratios", name_, m,
-                modes_.omega.size(), modes_.zeta.size());
-  if ((modes_.omega.array() < 0).any() || (modes_.zeta.array() < 0).any())
+                modes.omega.size(), modes.zeta.size());
+  if ((modes.omega.array() < 0).any() || (modes.zeta.array() < 0).any())
     input_error("flexible body '{}': negative natural frequency or damping ratio", name_);
   if (!(options_.load_scale > 0.0))
     input_error("flexible body '{}': load scale (2-D thickness) {} m must be > 0", name_,
                 options_.load_scale);
-  ldd::Vec<D> lower = modes_.x0.front(), upper = lower;
-  for (const auto& x : modes_.x0) {
+  ldd::Vec<D> lower = modes.x0.front(), upper = lower;
+  for (const auto& x : modes.x0) {
     lower = lower.cwiseMin(x);
     upper = upper.cwiseMax(x);
   }
   size_ = (upper - lower).norm();
-  y_ = v_ = a_ = F_ = Eigen::VectorXd::Zero(m);
-}
-
-template <int D>
-Eigen::VectorXd FlexibleBody<D>::field(const Eigen::VectorXd& q, Eigen::Index vertex) const {
-  return modes_.shapes.middleRows(D * vertex, D) * q;
-}
-
-template <int D>
-ldd::Vec<D> FlexibleBody<D>::displacement(Eigen::Index vertex) const {
-  return field(y_, vertex);
 }
 
 template <int D>
 double FlexibleBody<D>::max_speed() const {
-  double speed = 0.0;
-  for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(modes_.x0.size()); ++k)
-    speed = std::max(speed, field(v_, k).norm());
+  const double speed = model_->max_speed();
   if (!carrier_) return speed;
-  const motion::RigidState s = carrier_->state(time_);
+  const motion::RigidState s = carrier_->state(model_->time());
   return speed + s.velocity.norm() + s.omega.norm() * carrier_reach_;
-}
-
-template <int D>
-double FlexibleBody<D>::deformation() const {
-  const Eigen::VectorXd elastic = (modes_.omega.array() > 0.0).select(y_, 0.0);
-  double largest = 0.0;
-  for (Eigen::Index k = 0; k < static_cast<Eigen::Index>(modes_.x0.size()); ++k)
-    largest = std::max(largest, field(elastic, k).norm());
-  return largest;
 }
 
 template <int D>
@@ -116,23 +119,31 @@ void FlexibleBody<D>::set_carrier(motion::RigidMotion carrier) {
   // The farthest the body reaches from the (material) pivot, its deformation allowed for.
   const Eigen::Vector3d pivot = carrier_->state(0.0).pivot;
   carrier_reach_ = 0.0;
-  for (const auto& x : modes_.x0)
+  for (const auto& x : modes_->x0)
     carrier_reach_ = std::max(carrier_reach_, (widen<D>(x) - pivot).norm() + size_);
 }
 
 template <int D>
+Eigen::VectorXd FlexibleBody<D>::body_acceleration(double t) const {
+  const motion::RigidState s = carrier_state(carrier_, t);
+  const Eigen::Vector3d load = s.rotation.transpose() * (widen<D>(gravity_) - s.acceleration);
+  return load.head<D>();
+}
+
+template <int D>
 Eigen::VectorXd FlexibleBody<D>::inertial_force(double t) const {
-  const Eigen::Index m = modes_.modes();
-  if (modes_.participation.size() == 0) return Eigen::VectorXd::Zero(m);
+  const ModalSurface<D>& modes = *modes_;
+  const Eigen::Index m = modes.modes();
+  if (modes.participation.size() == 0) return Eigen::VectorXd::Zero(m);
   const motion::RigidState s = carrier_state(carrier_, t);
   // Body-frame gravity and tank acceleration: Γ·Rᵀ(g − Ẍ).
   const Eigen::Vector3d load = s.rotation.transpose() * (widen<D>(gravity_) - s.acceleration);
-  Eigen::VectorXd F = modes_.participation * load.head<D>();
+  Eigen::VectorXd F = modes.participation * load.head<D>();
   if (!rotates(s)) return F;
   // The Euler term −Γ_rot(c)·α of the rotation about the pivot c (spec §4.3); the centrifugal
   // and Coriolis terms, of order Ω²r and Ωu̇ against g, are left out (1e-2 g for the paper's
   // rolling tanks).
-  if (modes_.rotation_participation.rows() != m)
+  if (modes.rotation_participation.rows() != m)
     input_error(
         "flexible body '{}': its tank rotates but the mode set has no rotational "
         "participation factors",
@@ -140,32 +151,31 @@ Eigen::VectorXd FlexibleBody<D>::inertial_force(double t) const {
   const Eigen::Vector3d alpha = s.rotation.transpose() * s.alpha;
   // Γ_rot about the pivot: Φᵀ M (e_k × (x − c)) = Γ_rot(q)_k + Γ·(e_k × (q − c)), q the modes'
   // reference point; the pivot in the body frame is the material pivot s.pivot.
-  const Eigen::Vector3d q_minus_c = modes_.rotation_reference - s.pivot;
+  const Eigen::Vector3d q_minus_c = modes.rotation_reference - s.pivot;
   for (int k = (D == 2 ? 2 : 0); k < 3; ++k) {
     const int column = D == 2 ? 0 : k;
     const Eigen::Vector3d arm = Eigen::Vector3d::Unit(k).cross(q_minus_c);
     const Eigen::VectorXd about_pivot =
-        modes_.rotation_participation.col(column) + modes_.participation * arm.head<D>();
+        modes.rotation_participation.col(column) + modes.participation * arm.head<D>();
     F -= about_pivot * alpha[k];
   }
   return F;
 }
 
 template <int D>
-void FlexibleBody<D>::place(ldd::WallMesh<D>& wall, const Eigen::VectorXd& y,
-                            const Eigen::VectorXd& v, const Eigen::VectorXd& a, double t) const {
+void FlexibleBody<D>::place(ldd::WallMesh<D>& wall, const WallFields& fields, double t) const {
   const motion::RigidState s = carrier_state(carrier_, t);
   const Eigen::Matrix3d& R = s.rotation;
   const Eigen::Vector3d c = s.pivot + s.translation;
-  const std::size_t n = modes_.x0.size();
+  const std::size_t n = modes_->x0.size();
   std::vector<ldd::Vec<D>> x(n), xv(n), xa(n);
-  const Eigen::VectorXd u = modes_.shapes * y, uv = modes_.shapes * v, ua = modes_.shapes * a;
+  const Eigen::VectorXd &u = fields.u, &uv = fields.v, &ua = fields.a;
   for (std::size_t k = 0; k < n; ++k) {
     const auto row = static_cast<Eigen::Index>(D * k);
     // x = c + R(x0 + u − c0): the body's point in the tank frame carried by the tank (c0 the
     // material pivot); v and a with the rigid, relative and Coriolis parts (spec §4.1).
     const Eigen::Vector3d r =
-        R * (widen<D>(ldd::Vec<D>(modes_.x0[k] + u.segment<D>(row))) - s.pivot);
+        R * (widen<D>(ldd::Vec<D>(modes_->x0[k] + u.segment<D>(row))) - s.pivot);
     const Eigen::Vector3d rel_v = R * widen<D>(ldd::Vec<D>(uv.segment<D>(row)));
     const Eigen::Vector3d rel_a = R * widen<D>(ldd::Vec<D>(ua.segment<D>(row)));
     x[k] = (c + r).head<D>();
@@ -178,12 +188,16 @@ void FlexibleBody<D>::place(ldd::WallMesh<D>& wall, const Eigen::VectorXd& y,
   placed_rotation_ = R.topLeftCorner<D, D>();
 }
 
+namespace {
+
+/// The fluid's forces on the wall's vertices, in the body's frame, D per vertex [N/m in 2-D].
 template <int D>
-Eigen::VectorXd FlexibleBody<D>::modal_force(const ldd::FlowSolver<D>& flow,
-                                             std::span<const double> pressure) const {
-  const auto& wall = flow.walls()[static_cast<std::size_t>(wall_)];
-  auto loads = ldd::wall_pressure_loads<D>(flow.points(), wall, wall_, flow.dx(), pressure);
-  if (options_.viscous_traction && pressure.empty()) {
+Eigen::VectorXd wall_forces(const ldd::FlowSolver<D>& flow, int wall_index, bool viscous,
+                            const Eigen::Matrix<double, D, D>& rotation,
+                            std::span<const double> pressure) {
+  const auto& wall = flow.walls()[static_cast<std::size_t>(wall_index)];
+  auto loads = ldd::wall_pressure_loads<D>(flow.points(), wall, wall_index, flow.dx(), pressure);
+  if (viscous && pressure.empty()) {
     const auto shear = ldd::wall_viscous_loads<D>(
         flow.points(), wall, flow.dx(), flow.options().density * flow.options().viscosity);
     for (std::size_t k = 0; k < loads.vertex_force.size(); ++k)
@@ -191,28 +205,41 @@ Eigen::VectorXd FlexibleBody<D>::modal_force(const ldd::FlowSolver<D>& flow,
   }
   Eigen::VectorXd f(D * static_cast<Eigen::Index>(loads.vertex_force.size()));
   for (std::size_t k = 0; k < loads.vertex_force.size(); ++k)  // in the tank's (body's) frame
-    f.segment<D>(static_cast<Eigen::Index>(D * k)) =
-        placed_rotation_.transpose() * loads.vertex_force[k];
-  return options_.load_scale * (modes_.shapes.transpose() * f);
+    f.segment<D>(static_cast<Eigen::Index>(D * k)) = rotation.transpose() * loads.vertex_force[k];
+  return f;
+}
+
+}  // namespace
+
+template <int D>
+Eigen::VectorXd FlexibleBody<D>::modal_force(const ldd::FlowSolver<D>& flow,
+                                             std::span<const double> pressure) const {
+  const Eigen::VectorXd f =
+      wall_forces<D>(flow, wall_, options_.viscous_traction, placed_rotation_, pressure);
+  return options_.load_scale * (modes_->shapes.transpose() * f);
 }
 
 template <int D>
-void FlexibleBody<D>::update_coefficients(double dt) {
-  if (dt == coefficient_dt_) return;
-  const Eigen::Index m = modes_.modes();
-  coefficients_.resize(static_cast<std::size_t>(m));
-  for (Eigen::Index i = 0; i < m; ++i)
-    coefficients_[static_cast<std::size_t>(i)] =
-        modal::cfpi_coefficients(modes_.omega[i], modes_.zeta[i], dt);
-  coefficient_dt_ = dt;
+BodyLoad FlexibleBody<D>::load(const ldd::FlowSolver<D>& flow, double t) const {
+  const Eigen::VectorXd f =
+      wall_forces<D>(flow, wall_, options_.viscous_traction, placed_rotation_, {});
+  BodyLoad load;
+  load.generalised = options_.load_scale * (modes_->shapes.transpose() * f) + inertial_force(t);
+  load.wall_force = options_.load_scale * f;
+  load.acceleration = body_acceleration(t);
+  const motion::RigidState s = carrier_state(carrier_, t);
+  if (rotates(s)) {
+    load.angular_acceleration = s.rotation.transpose() * s.alpha;
+    load.pivot = s.pivot;
+  }
+  return load;
 }
 
 template <int D>
-void FlexibleBody<D>::measure_added_mass(ldd::FlowSolver<D>& flow, double dt) {
-  update_coefficients(dt);
+void FlexibleBody<D>::measure_added_mass(ldd::FlowSolver<D>& flow, double) {
   const auto& points = flow.points();
   const auto& wall = flow.walls()[static_cast<std::size_t>(wall_)];
-  const Eigen::Index m = modes_.modes();
+  const Eigen::Index m = modes_->modes();
   Eigen::MatrixXd added(m, m);
   std::vector<ldd::Vec<D>> acceleration(static_cast<std::size_t>(points.size()));
   for (Eigen::Index mode = 0; mode < m; ++mode) {
@@ -224,7 +251,7 @@ void FlexibleBody<D>::measure_added_mass(ldd::FlowSolver<D>& flow, double dt) {
         const auto vertex = static_cast<Eigen::Index>(wall.element(h.element)[c]);
         acceleration[i] +=
             h.barycentric[c] *
-            (placed_rotation_ * modes_.shapes.template block<D, 1>(D * vertex, mode));
+            (placed_rotation_ * modes_->shapes.template block<D, 1>(D * vertex, mode));
       }
     }
     added.col(mode) = -modal_force(flow, flow.acceleration_pressure(acceleration));
@@ -233,91 +260,64 @@ void FlexibleBody<D>::measure_added_mass(ldd::FlowSolver<D>& flow, double dt) {
 }
 
 template <int D>
-Eigen::VectorXd FlexibleBody<D>::modal_acceleration() const {
-  const Eigen::ArrayXd w = modes_.omega.array();
-  return (F_.array() - 2.0 * modes_.zeta.array() * w * v_.array() - w * w * y_.array()).matrix();
-}
-
-template <int D>
 void FlexibleBody<D>::start(ldd::FlowSolver<D>& flow) {
-  const Eigen::Index m = modes_.modes();
-  y_ = Eigen::VectorXd::Zero(m);
-  v_ = modes_.initial_velocity.size() == m ? modes_.initial_velocity : Eigen::VectorXd::Zero(m);
-  time_ = flow.time();
+  const double t = flow.time();
+  model_->reset(t);
   gravity_ = flow.options().gravity;
-  place(flow.walls()[static_cast<std::size_t>(wall_)], y_, v_, Eigen::VectorXd::Zero(m), time_);
-  const Eigen::VectorXd hydro = modal_force(flow) + inertial_force(time_);
-  if (options_.static_start) {
-    for (Eigen::Index i = 0; i < m; ++i)
-      y_[i] = modes_.omega[i] > 0.0 ? hydro[i] / (modes_.omega[i] * modes_.omega[i]) : 0.0;
-  }
+  auto& wall = flow.walls()[static_cast<std::size_t>(wall_)];
+  place(wall, model_->wall(), t);
+  const BodyLoad hydro = load(flow, t);
+  if (options_.static_start) model_->settle(hydro);
   if (options_.scheme == CouplingScheme::strong) {
     measure_added_mass(flow, flow.stable_dt(0.0).first);
     initial_added_mass_ = added_mass_;
-    const Eigen::MatrixXd lhs = Eigen::MatrixXd::Identity(m, m) + added_mass_;
-    const Eigen::VectorXd omega2 = modes_.omega.array().square();
-    a_ = lhs.ldlt().solve(hydro - omega2.cwiseProduct(y_));
-    F_ = hydro - added_mass_ * a_;
+    model_->start(hydro, &added_mass_);
   } else {
-    F_ = hydro;
+    model_->start(hydro, nullptr);
   }
-  a_ = modal_acceleration();
-  place(flow.walls()[static_cast<std::size_t>(wall_)], y_, v_, a_, time_);
+  place(wall, model_->wall(), t);
+}
+
+template <int D>
+BodyState FlexibleBody<D>::state() const {
+  return {model_->time(),       y(), v(), a(), F(), added_mass_, initial_added_mass_,
+          model_->extra_state()};
 }
 
 template <int D>
 void FlexibleBody<D>::restore(const BodyState& state) {
-  const Eigen::Index m = modes_.modes();
+  const Eigen::Index m = modes_->modes();
   if (state.y.size() != m || state.v.size() != m || state.a.size() != m || state.F.size() != m)
     input_error("flexible body '{}': the checkpoint holds {} modes, the mode set {}", name_,
                 state.y.size(), m);
-  time_ = state.time;
-  y_ = state.y;
-  v_ = state.v;
-  a_ = state.a;
-  F_ = state.F;
+  model_->restore(state.time, state.y, state.v, state.a, state.F, state.model);
   added_mass_ = state.added_mass;
   initial_added_mass_ = state.initial_added_mass;
-  coefficient_dt_ = -1.0;
-  placed_rotation_ = carrier_state(carrier_, time_).rotation.topLeftCorner<D, D>();
+  placed_rotation_ = carrier_state(carrier_, state.time).rotation.topLeftCorner<D, D>();
+}
+
+template <int D>
+Eigen::VectorXd FlexibleBody<D>::answer_to(const Eigen::VectorXd& generalised) const {
+  return answer_.slope * generalised + answer_.offset;
 }
 
 template <int D>
 void FlexibleBody<D>::predict(ldd::WallMesh<D>& wall, double dt) {
-  const Eigen::Index m = modes_.modes();
-  update_coefficients(dt);
-  y_free_.resize(m);
-  v_free_.resize(m);
-  kappa_.resize(m);
-  rest_.resize(m);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    const auto& c = coefficients_[static_cast<std::size_t>(i)];
-    y_free_[i] = c.a11 * y_[i] + c.a12 * v_[i] + (c.c_y - c.d_y) * F_[i];
-    v_free_[i] = c.a21 * y_[i] + c.a22 * v_[i] + (c.c_v - c.d_v) * F_[i];
-    // The wall acceleration the fluid sees is the step's mean, (ẏ^{n+1} − ẏ^n)/Δt: the PPE's
-    // wall rows are consistent (the wall nodes' u* = U^{n+1} − Δt·A equals U^n, the velocity
-    // the fluid beside the wall starts from) only when ΔU = Δt·A. With the end-of-step
-    // acceleration ÿ^{n+1}, u* carried a spurious −(Δt/2)ΔA that cut the piston's added mass by
-    // a quarter (tests/coupling/test_flexible_body.cpp).
-    kappa_[i] = c.d_v / dt;
-    rest_[i] = (v_free_[i] - v_[i]) / dt;
-  }
-  // The predictor F_p = F^n.
-  y_step_.resize(m);
-  for (Eigen::Index i = 0; i < m; ++i)
-    y_step_[i] = y_free_[i] + coefficients_[static_cast<std::size_t>(i)].d_y * F_[i];
-  a_step_ = kappa_.cwiseProduct(F_) + rest_;
-  const Eigen::VectorXd v = v_ + dt * a_step_;  // = v_free + d_v·F_p
-  place(wall, y_step_, v, a_step_, time_ + dt);
+  step_dt_ = dt;
+  answer_ = model_->predict(dt);
+  // The predictor F_p = Fⁿ.
+  a_step_ = answer_to(F());
+  place(wall, model_->wall_in_step(a_step_), model_->time() + dt);
   iterations_ = 0;
   if (added_mass_.size() > 0) jacobian_ = -added_mass_;
 }
 
 template <int D>
-double FlexibleBody<D>::iterate(ldd::WallMesh<D>& wall, const Eigen::VectorXd& measured) {
-  const Eigen::Index m = modes_.modes();
-  // R(ā) = κ∘G(ā) + r − ā: the structure's answer to the fluid's load minus what the fluid saw.
-  const Eigen::VectorXd answer = kappa_.cwiseProduct(measured) + rest_;
+double FlexibleBody<D>::iterate(ldd::WallMesh<D>& wall, const BodyLoad& load) {
+  const Eigen::VectorXd& measured = load.generalised;
+  const Eigen::Index m = modes_->modes();
+  // R(ā) = S·G(ā) + r − ā: the structure's answer to the fluid's load minus what the fluid saw.
+  const Eigen::VectorXd answer = answer_to(measured);
   const Eigen::VectorXd residual = answer - a_step_;
   if (added_mass_.size() == 0) {  // explicit: no iteration
     const double scale = std::max({answer.norm(), a_step_.norm(), 1e-300});
@@ -326,9 +326,8 @@ double FlexibleBody<D>::iterate(ldd::WallMesh<D>& wall, const Eigen::VectorXd& m
   const Eigen::MatrixXd identity = Eigen::MatrixXd::Identity(m, m);
   // Scale: the acceleration the present load gives the wet structure (the answer itself passes
   // through zero at every turning point of the motion).
-  const Eigen::VectorXd wet = (identity + kappa_.asDiagonal() * added_mass_)
-                                  .partialPivLu()
-                                  .solve(kappa_.cwiseProduct(measured));
+  const Eigen::VectorXd wet =
+      (identity + answer_.slope * added_mass_).partialPivLu().solve(answer_.slope * measured);
   const double scale = std::max({answer.norm(), a_step_.norm(), wet.norm(), 1e-300});
   const double relative = residual.norm() / scale;
   // Good Broyden update of the fluid's Jacobian dG/dā from the last pair of iterates: the
@@ -338,8 +337,7 @@ double FlexibleBody<D>::iterate(ldd::WallMesh<D>& wall, const Eigen::VectorXd& m
     const double norm2 = da.squaredNorm();
     if (norm2 > 0.0) jacobian_ += (dF - jacobian_ * da) * da.transpose() / norm2;
   }
-  Eigen::VectorXd delta =
-      -(kappa_.asDiagonal() * jacobian_ - identity).partialPivLu().solve(residual);
+  Eigen::VectorXd delta = -(answer_.slope * jacobian_ - identity).partialPivLu().solve(residual);
   // A residual that grew: half a step (the iteration met a nonlinearity, e.g. wall nodes
   // released from tension, or a Jacobian far off).
   if (iterations_ > 0 && residual.norm() > last_residual_) delta *= 0.5;
@@ -348,23 +346,13 @@ double FlexibleBody<D>::iterate(ldd::WallMesh<D>& wall, const Eigen::VectorXd& m
   last_residual_ = residual.norm();
   ++iterations_;
   a_step_ += delta;
-  // The wall's velocity follows its mean acceleration exactly (ẏ^{n+1} = ẏ^n + Δt·ā), so the
-  // wall nodes' u* stays U^n + Δt·g whatever the iterate (see predict).
-  place(wall, y_step_, v_ + coefficient_dt_ * a_step_, a_step_, time_ + coefficient_dt_);
+  place(wall, model_->wall_in_step(a_step_), model_->time() + step_dt_);
   return relative;
 }
 
 template <int D>
-void FlexibleBody<D>::correct(const Eigen::VectorXd& measured) {
-  const Eigen::Index m = modes_.modes();
-  for (Eigen::Index i = 0; i < m; ++i) {
-    const auto& c = coefficients_[static_cast<std::size_t>(i)];
-    y_[i] = y_free_[i] + c.d_y * measured[i];
-    v_[i] = v_free_[i] + c.d_v * measured[i];
-  }
-  F_ = measured;
-  time_ += coefficient_dt_;
-  a_ = modal_acceleration();
+void FlexibleBody<D>::correct(const BodyLoad& measured) {
+  model_->correct(measured);
 }
 
 template <int D>
@@ -402,13 +390,13 @@ ldd::StepMonitor coupled_step(ldd::FlowSolver<D>& flow, std::span<FlexibleBody<D
   }
   added += since(t);
   own += since(t);
-  std::vector<Eigen::VectorXd> measured(bodies.size());
+  std::vector<BodyLoad> measured(bodies.size());
   for (int iteration = 1;; ++iteration) {
     flow.solve_pressure();
     t = Clock::now();
     bool converged = true;
     for (std::size_t b = 0; b < bodies.size(); ++b) {
-      measured[b] = bodies[b].modal_force(flow) + bodies[b].inertial_force(flow.time() + dt);
+      measured[b] = bodies[b].load(flow, flow.time() + dt);
       const Eigen::VectorXd seen = bodies[b].fluid_acceleration();
       const double residual = bodies[b].iterate(wall_of(bodies[b]), measured[b]);
       coupling[b].iterations = iteration;
@@ -417,7 +405,7 @@ ldd::StepMonitor coupled_step(ldd::FlowSolver<D>& flow, std::span<FlexibleBody<D
       coupling[b].converged = !body_strong || residual <= bodies[b].options().tolerance;
       spdlog::debug(
           "coupling: step {} iteration {}: body {} residual {:.3e}, F = [{:.6g}] at ā = [{:.6g}]",
-          step, iteration, bodies[b].name(), residual, fmt::join(measured[b], ", "),
+          step, iteration, bodies[b].name(), residual, fmt::join(measured[b].generalised, ", "),
           fmt::join(seen, ", "));
       converged = converged && coupling[b].converged;
     }
@@ -433,6 +421,8 @@ ldd::StepMonitor coupled_step(ldd::FlowSolver<D>& flow, std::span<FlexibleBody<D
     coupling[b].stretch = bodies[b].stretch();
     coupling[b].deformation = bodies[b].deformation();
     coupling[b].peak_pressure = bodies[b].peak_pressure(flow);
+    coupling[b].solver_iterations = bodies[b].model().solver_iterations();
+    coupling[b].energy = bodies[b].model().energy();
   }
   own += since(t);
   for (auto& c : coupling) {

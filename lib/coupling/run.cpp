@@ -205,9 +205,15 @@ RunResult run(ldd::FlowSolver<D>& solver, std::span<const WallMotion> motions,
       }
     }
   } catch (const ldd::FlowDiverged& e) {
+    if (r.coupling.size() > r.monitors.size()) r.coupling.pop_back();  // the failed step's
     r.status = RunStatus::diverged;
     r.divergence_report = e.report().text();
     snapshot(SnapshotKind::diverged);
+  } catch (const StructureFailed&) {
+    // The flow as the failed step left it; the run ends with the structure's report (exit 3,
+    // no results).
+    snapshot(SnapshotKind::diverged);
+    throw;
   }
   r.end_time = solver.time();
   r.wall_seconds =

@@ -68,7 +68,9 @@ ldd::StepMonitor unpack_monitor(const double* r) {
   return m;
 }
 
-constexpr int coupling_fields = 9;
+constexpr int coupling_fields = 15;
+/// What checkpoints wrote before the structure model's iterations and energy were monitored.
+constexpr int coupling_fields_without_energy = 9;
 
 void pack(const coupling::CouplingMonitor& c, double* r) {
   r[0] = c.iterations;
@@ -80,9 +82,15 @@ void pack(const coupling::CouplingMonitor& c, double* r) {
   r[6] = c.added_mass_seconds;
   r[7] = c.deformation;
   r[8] = c.peak_pressure;
+  r[9] = c.solver_iterations;
+  r[10] = c.energy.kinetic;
+  r[11] = c.energy.strain;
+  r[12] = c.energy.external_work;
+  r[13] = c.energy.damping;
+  r[14] = c.energy.numerical_dissipation;
 }
 
-coupling::CouplingMonitor unpack_coupling(const double* r) {
+coupling::CouplingMonitor unpack_coupling(const double* r, int fields) {
   coupling::CouplingMonitor c;
   c.iterations = static_cast<int>(r[0]);
   c.residual = r[1];
@@ -93,6 +101,9 @@ coupling::CouplingMonitor unpack_coupling(const double* r) {
   c.added_mass_seconds = r[6];
   c.deformation = r[7];
   c.peak_pressure = r[8];
+  if (fields < coupling_fields) return c;
+  c.solver_iterations = static_cast<int>(r[9]);
+  c.energy = {r[10], r[11], r[12], r[13], r[14]};
   return c;
 }
 
@@ -165,6 +176,11 @@ void write_bodies(io::ArtefactWriter& w, std::span<const coupling::FlexibleBody<
   w.write("/bodies/v", v);
   w.write("/bodies/a", a);
   w.write("/bodies/F", F);
+  // The structure model's own state beyond the interface coordinates (one body: the scene has
+  // one structure), e.g. a nonlinear body's nodal displacement.
+  for (const auto& [name, values] : bodies.front().state().model)
+    w.write("/bodies/model/" + name,
+            std::vector<double>(values.data(), values.data() + values.size()));
   if (strong) {
     const Dims dims{static_cast<std::uint64_t>(nb), static_cast<std::uint64_t>(m),
                     static_cast<std::uint64_t>(m)};
@@ -316,6 +332,19 @@ ldd::FlowState<D> read_flow(const io::ArtefactReader& r) {
   return s;
 }
 
+/// The structure model's extra state (/bodies/model/*; none in checkpoints of linear modes
+/// written before it was kept).
+std::map<std::string, Eigen::VectorXd> read_model_state(const io::ArtefactReader& r) {
+  std::map<std::string, Eigen::VectorXd> state;
+  if (!r.has("/bodies/model")) return state;
+  for (const std::string& name : r.children("/bodies/model")) {
+    const std::vector<double> values = r.read_values("/bodies/model/" + name);
+    state[name] =
+        Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+  }
+  return state;
+}
+
 std::vector<coupling::BodyState> read_bodies(const io::ArtefactReader& r, std::size_t count) {
   std::vector<coupling::BodyState> bodies(count);
   if (count == 0) return bodies;
@@ -334,6 +363,7 @@ std::vector<coupling::BodyState> read_bodies(const io::ArtefactReader& r, std::s
     bodies[b].v = v.row(row).transpose();
     bodies[b].a = a.row(row).transpose();
     bodies[b].F = F.row(row).transpose();
+    if (b == 0) bodies[b].model = read_model_state(r);
     if (!strong) continue;
     bodies[b].added_mass = Eigen::Map<const MatrixRM>(added.data() + b * m * m, m, m);
     bodies[b].initial_added_mass = Eigen::Map<const MatrixRM>(initial.data() + b * m * m, m, m);
@@ -349,16 +379,20 @@ coupling::RunResult read_run(const io::ArtefactReader& r, std::size_t bodies) {
   }
   if (r.has("/run/coupling")) {
     const MatrixRM c = r.read_matrix("/run/coupling");
-    if (c.cols() != coupling_fields * static_cast<Eigen::Index>(bodies))
+    const auto n = static_cast<Eigen::Index>(bodies);
+    const int fields = c.cols() == coupling_fields_without_energy * n
+                           ? coupling_fields_without_energy
+                           : coupling_fields;
+    if (c.cols() != fields * n)
       input_error(
-          "{}: /run/coupling has {} columns; this version writes {} per body ({} "
+          "{}: /run/coupling has {} columns; this version reads {} (or {}) per body ({} "
           "bodies): the checkpoint is from another version, rerun without --restart",
-          r.path().string(), c.cols(), coupling_fields, bodies);
+          r.path().string(), c.cols(), coupling_fields, coupling_fields_without_energy, bodies);
     for (Eigen::Index k = 0; k < c.rows(); ++k) {
       run.coupling.emplace_back();
       for (std::size_t b = 0; b < bodies; ++b)
         run.coupling.back().push_back(
-            unpack_coupling(&c(k, coupling_fields * static_cast<Eigen::Index>(b))));
+            unpack_coupling(&c(k, fields * static_cast<Eigen::Index>(b)), fields));
     }
   }
   run.phase_totals = ldd::PhaseSeconds::from_values(r.read_values("/run/phase_totals"));

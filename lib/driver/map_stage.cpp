@@ -98,14 +98,6 @@ Eigen::VectorXd mode_errors(const rbf::QualityReport& q, Eigen::Index n_modes, i
   return e;
 }
 
-rbf::RbfOptions rbf_options(const io::Scene& scene) {
-  rbf::RbfOptions o;
-  o.support_factor = scene.number("map.support_factor");
-  o.support_radius = scene.number("map.support_radius");
-  o.far_factor = scene.number("map.far_factor");
-  return o;
-}
-
 void check_far_targets(const rbf::QualityReport& q, const mesh::SurfaceMesh& target,
                        const io::Scene& scene) {
   if (q.far_targets == 0) return;
@@ -176,6 +168,14 @@ void write_mapped_xdmf(const std::filesystem::path& h5, const mesh::SurfaceMesh&
 }
 
 }  // namespace
+
+rbf::RbfOptions rbf_options(const io::Scene& scene) {
+  rbf::RbfOptions o;
+  o.support_factor = scene.number("map.support_factor");
+  o.support_radius = scene.number("map.support_radius");
+  o.far_factor = scene.number("map.far_factor");
+  return o;
+}
 
 void validate_map_scene(const io::Scene& scene) {
   if (scene.string("map.target") != "file") return;

@@ -3,8 +3,13 @@
 #include <filesystem>
 
 #include "io/scene.hpp"
+#include "rbf/interpolator.hpp"
 
 namespace hm::driver {
+
+/// The RBF options of the scene's map.* keys (fsi-map's, and fsi-simulate's map of a nonlinear
+/// structure's displacement onto the same wall).
+rbf::RbfOptions rbf_options(const io::Scene& scene);
 
 /// Checks everything fsi-map needs from the scene (for --validate).
 void validate_map_scene(const io::Scene& scene);

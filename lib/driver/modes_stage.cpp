@@ -29,18 +29,6 @@ void require_structure(const io::Scene& scene) {
                 scene.file().string());
 }
 
-fem::ElasticModel elastic_model(const io::Scene& scene) {
-  fem::ElasticModel model;
-  model.material = {scene.number("structure.material.youngs_modulus"),
-                    scene.number("structure.material.poisson_ratio"),
-                    scene.number("structure.material.density")};
-  model.plane = scene.string("structure.formulation") == "plane_stress"
-                    ? fem::PlaneAssumption::plane_stress
-                    : fem::PlaneAssumption::plane_strain;
-  model.thickness_m = scene.number("structure.thickness");
-  return model;
-}
-
 modal::ModeRequest mode_request(const io::Scene& scene) {
   modal::ModeRequest request;
   request.count = static_cast<int>(scene.integer("modes.count"));
@@ -103,11 +91,6 @@ Eigen::Vector3d reference_point(const io::Scene& scene) {
   const Eigen::VectorXd given = scene.vector("modes.reference_point");
   if (given.size() > 0) point.head(given.size()) = given;
   return point;
-}
-
-std::vector<std::string> clamped_groups(const io::Scene& scene) {
-  const std::string clamped = scene.string("structure.clamped");
-  return clamped.empty() ? std::vector<std::string>{} : std::vector<std::string>{clamped};
 }
 
 /// [n_modes, n_nodes, dim] row-major from the n_dofs × n_modes shapes (DOF = dim·node + c).

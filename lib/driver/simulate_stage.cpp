@@ -14,12 +14,16 @@
 #include "core/progress.hpp"
 #include "core/text.hpp"
 #include "coupling/free_motion.hpp"
+#include "coupling/linear_modal_model.hpp"
+#include "coupling/nonlinear_fe_model.hpp"
 #include "coupling/probes.hpp"
 #include "coupling/run.hpp"
 #include "coupling/structure_run.hpp"
 #include "driver/checkpoint_io.hpp"
 #include "driver/flow_setup.hpp"
+#include "driver/map_stage.hpp"
 #include "driver/structure_io.hpp"
+#include "fem/hyperelastic.hpp"
 #include "fem/static_solve.hpp"
 #include "io/artefact.hpp"
 #include "io/probe_csv.hpp"
@@ -38,6 +42,7 @@ std::vector<io::InputRecord> provenance_inputs(const io::Scene& scene, const Sim
   std::vector<io::InputRecord> records{io::input_record("scene", scene.file())};
   if (!inputs.mesh.empty()) records.push_back(io::input_record("mesh", inputs.mesh));
   if (!inputs.mapped.empty()) records.push_back(io::input_record("mapped", inputs.mapped));
+  if (!inputs.modes.empty()) records.push_back(io::input_record("modes", inputs.modes));
   for (std::size_t k = 0; k < tables.size(); ++k)
     records.push_back(io::input_record(fmt::format("motion_table_{}", k), tables[k]));
   return records;
@@ -158,6 +163,111 @@ coupling::CouplingOptions coupling_options(const io::Scene& scene) {
   return o;
 }
 
+/// Refuses what a nonlinear structure model cannot do, naming the key.
+void check_nonlinear_scene(const io::Scene& scene) {
+  const std::string model = scene.string("structure.model");
+  if (model == "linear_modal") return;
+  if (!scene.string("structure.free_translation").empty())
+    input_error(
+        "{} = \"{}\" with {} = \"{}\": a body in free translation runs on linear modes only "
+        "(its rigid-body motion is a mode of the set); use structure.model = \"linear_modal\"",
+        scene.where("structure.free_translation"), scene.string("structure.free_translation"),
+        scene.where("structure.model"), model);
+}
+
+/// The scene keys of a structure model, checked without artefacts (--validate).
+void validate_structure_model(const io::Scene& scene) {
+  check_nonlinear_scene(scene);
+  if (scene.string("structure.model") == "linear_modal") return;
+  const fem::HyperelasticModel material{
+      elastic_model(scene), fem::material_law_from(scene.string("structure.material.law"),
+                                                   scene.where("structure.material.law"))};
+  fem::validate(material, scene.dimension(), scene.where("structure.material.poisson_ratio"));
+}
+
+/// The dynamics options of a nonlinear structure model: scheme, ρ∞, Newton's tolerance and the
+/// Rayleigh damping of the modes' ζ (fitted at the two lowest frequencies) plus the scene's own
+/// Rayleigh α and β.
+fem::DynamicsOptions dynamics_options(const io::Scene& scene, const Eigen::VectorXd& omega) {
+  fem::DynamicsOptions o;
+  o.scheme = fem::time_scheme_from(scene.string("structure.time_scheme"),
+                                   scene.where("structure.time_scheme"));
+  o.rho_infinity = scene.number("structure.rho_infinity");
+  o.newton.tolerance = scene.number("structure.newton_tolerance");
+  const Eigen::VectorXd ratios = scene.vector("modes.damping_ratios");
+  const double zeta = ratios.size() > 0 ? ratios[0] : scene.number("modes.damping_ratio");
+  const coupling::RayleighFit fit = coupling::rayleigh_for(zeta, omega.size() > 0 ? omega[0] : 0.0,
+                                                           omega.size() > 1 ? omega[1] : 0.0);
+  o.rayleigh_alpha = scene.number("modes.rayleigh_alpha") + fit.alpha;
+  o.rayleigh_beta = scene.number("modes.rayleigh_beta") + fit.beta;
+  return o;
+}
+
+/// The total-Lagrangian body of structure.model = "nonlinear_fe" on the scene's structure
+/// (mesh.h5), its clamped group, material and law, its linear modes (modes.h5: the interface's
+/// shapes before mapping) and the map of its displacement onto the wall of mapped.h5.
+template <int D>
+std::unique_ptr<coupling::StructureModel<D>> nonlinear_fe_model(
+    const io::Scene& scene, const SimulateInputs& inputs,
+    std::shared_ptr<const coupling::ModalSurface<D>> interface, const mesh::SurfaceMesh& wall) {
+  if (inputs.mesh.empty() || inputs.modes.empty())
+    throw UsageError(fmt::format(
+        "{}: {} = \"nonlinear_fe\" needs --mesh mesh.h5 (the structure's elements) and --modes "
+        "modes.h5 (its linear modes, the coupling's interface)",
+        stage_name, scene.where("structure.model")));
+  MeshArtefact mesh = read_structure_mesh(io::ArtefactReader(inputs.mesh, io::mesh_schema()));
+  const modal::ModeSet modes = read_mode_set(io::ArtefactReader(inputs.modes, io::modes_schema()));
+  if (modes.shapes.cols() != interface->modes() ||
+      modes.shapes.rows() != mesh.structure.dim * mesh.structure.node_count())
+    input_error(
+        "{}: {} modes of {} DOFs; the mapped set {} has {} modes and {} the structure {} "
+        "DOFs: the mode set is not this mesh's or mapped.h5's",
+        inputs.modes.string(), modes.shapes.cols(), modes.shapes.rows(), inputs.mapped.string(),
+        interface->modes(), inputs.mesh.string(), mesh.structure.dim * mesh.structure.node_count());
+  const std::string context = fmt::format("structure '{}'", structure_wall_name);
+  coupling::NonlinearFeParts parts;
+  fem::HyperelasticModel material{elastic_model(scene),
+                                  fem::material_law_from(scene.string("structure.material.law"),
+                                                         scene.where("structure.material.law"))};
+  fem::validate(material, mesh.structure.dim, scene.where("structure.material"));
+  parts.dofs = std::make_unique<fem::DofMap>(
+      fem::DofMap::clamp_groups(mesh.structure, clamped_groups(scene), "structure.clamped"));
+  parts.wall_map = std::make_unique<coupling::FeWallMap>(
+      mesh.surface.surface.vertices, mesh.surface.volume_node, mesh.structure.node_count(),
+      wall.vertices, rbf_options(scene));
+  parts.body =
+      std::make_unique<fem::HyperelasticBody>(std::move(mesh.structure), material, context);
+  parts.modes = modes.shapes;
+  parts.dynamics = dynamics_options(scene, modes.omega);
+  parts.context = context;
+  spdlog::info(
+      "{}: structure model nonlinear_fe: {} DOFs ({} free), {} law, {} (rho_inf {}), "
+      "Rayleigh alpha {:.4g} 1/s, beta {:.4g} s; wall {} the structure's boundary",
+      stage_name, parts.body->dof_count(), parts.dofs->free_count(),
+      scene.string("structure.material.law"), scene.string("structure.time_scheme"),
+      parts.dynamics.rho_infinity, parts.dynamics.rayleigh_alpha, parts.dynamics.rayleigh_beta,
+      parts.wall_map->identity() ? "is" : "is RBF-mapped from");
+  if (parts.dynamics.scheme == fem::TimeScheme::generalized_alpha &&
+      parts.dynamics.rho_infinity < 1.0)
+    spdlog::warn(
+        "{}: {} = \"generalized_alpha\" at rho_infinity {}: the fluid's load enters with the "
+        "weight 1 - alpha_f, the inertia with 1 - alpha_m, which misstates a strong added mass "
+        "(a light body in water moves too far); energy_conserving treats both alike",
+        stage_name, scene.where("structure.time_scheme"), parts.dynamics.rho_infinity);
+  return std::make_unique<coupling::NonlinearFeModel<D>>(std::move(interface), std::move(parts));
+}
+
+/// The structure model of structure.model on the mapped interface.
+template <int D>
+std::unique_ptr<coupling::StructureModel<D>> structure_model(
+    const io::Scene& scene, const SimulateInputs& inputs,
+    std::shared_ptr<const coupling::ModalSurface<D>> interface, const mesh::SurfaceMesh& wall) {
+  check_nonlinear_scene(scene);
+  if (scene.string("structure.model") == "nonlinear_fe")
+    return nonlinear_fe_model<D>(scene, inputs, std::move(interface), wall);
+  return std::make_unique<coupling::LinearModalModel<D>>(std::move(interface));
+}
+
 /// A displacement probe of a coupled run: the vertex of the structure's wall nearest to it.
 struct SurfaceProbe {
   std::string name;
@@ -242,6 +352,32 @@ double write_with_maximum(io::ArtefactWriter& w, const char* dataset, const char
   return largest;
 }
 
+/// The structure's model, its energy balance per step and its Newton iterations.
+template <int D>
+void write_structure_energy(io::ArtefactWriter& w, const coupling::RunResult& r,
+                            const coupling::FlexibleBody<D>& body) {
+  using C = coupling::CouplingMonitor;
+  const std::string model = body.model().kind();
+  w.set_attribute(ra::structure_model, model);
+  io::MatrixRM energy(static_cast<Eigen::Index>(r.coupling.size()), 5);
+  for (std::size_t k = 0; k < r.coupling.size(); ++k) {
+    const coupling::StructureEnergy e =
+        r.coupling[k].empty() ? coupling::StructureEnergy{} : r.coupling[k].front().energy;
+    energy.row(static_cast<Eigen::Index>(k)) << e.kinetic, e.strain, e.external_work, e.damping,
+        e.numerical_dissipation;
+  }
+  w.write(ds::monitor_structure_energy, energy);
+  w.set_attribute(ra::energy_columns,
+                  std::string("kinetic,strain,external_work,damping,numerical_dissipation"));
+  if (model == "linear_modal") return;
+  const auto iterations =
+      coupling_column<std::int64_t>(r.coupling, [](const C& c) { return c.solver_iterations; });
+  w.write(ds::monitor_structure_solver_iterations, iterations);
+  const double total = std::accumulate(iterations.begin(), iterations.end(), 0.0);
+  spdlog::info("{}: the {} structure took {:.0f} Newton iterations, {:.2f} a step", stage_name,
+               model, total, total / std::max<double>(1.0, static_cast<double>(iterations.size())));
+}
+
 template <int D>
 void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
                     const coupling::FlexibleBody<D>& body,
@@ -279,6 +415,7 @@ void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
                stage_name, total, r.wall_seconds, 100 * total / std::max(r.wall_seconds, 1e-12),
                std::accumulate(added.begin(), added.end(), 0.0));
   w.set_attribute(ra::coupling_scheme, std::string(coupling::to_string(body.options().scheme)));
+  write_structure_energy<D>(w, r, body);
   const double largest =
       write_with_maximum(w, ds::monitor_structure_stretch, ra::max_structure_stretch,
                          coupling_column<double>(r.coupling, [](const C& c) { return c.stretch; }));
@@ -293,10 +430,12 @@ void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
       "displacement {:.4g} m",
       stage_name, peak, deformation);
   if (free) write_free_translation(w, h, *free);
-  if (largest > 0.05)
+  const bool linear = std::string_view(body.model().kind()) == "linear_modal";
+  if (largest > 0.05 && linear)
     spdlog::warn(
         "{}: the structure's displacement reached {:.1f} % of its size: linear modes stretch "
-        "the body visibly beyond 5 % (rotations are not rigid); read the response with care",
+        "the body visibly beyond 5 % (rotations are not rigid); read the response with care, "
+        "or run the geometrically nonlinear body: structure.model = \"nonlinear_fe\"",
         stage_name, 100 * largest);
 }
 
@@ -371,8 +510,10 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     // The rotational participation factors are about the mode stage's reference point.
     const Eigen::VectorXd reference = scene.vector("modes.reference_point");
     mapped->modes.rotation_reference.head(reference.size()) = reference;
-    bodies.emplace_back(structure_wall_name, std::move(mapped->modes), setup.structure_wall,
-                        coupling_options(scene),
+    auto interface = std::make_shared<const coupling::ModalSurface<D>>(std::move(mapped->modes));
+    auto model = structure_model<D>(scene, inputs, interface, mapped->surface);
+    bodies.emplace_back(structure_wall_name, std::move(interface), std::move(model),
+                        setup.structure_wall, coupling_options(scene),
                         solver.walls()[static_cast<std::size_t>(setup.structure_wall)]);
     if (const std::string host = scene.string("coupling.moves_with"); !host.empty()) {
       if (free)
@@ -388,8 +529,9 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
                     scene.where("coupling.moves_with"), host, fmt::join(setup.wall_names, ", "));
       bodies.front().set_carrier(*setup.motions[w].motion);
     }
-    spdlog::info("{}: flexible body '{}': {} modes ({} Hz), {} coupling", stage_name,
-                 structure_wall_name, bodies.front().modes().modes(),
+    spdlog::info("{}: flexible body '{}': {} structure, {} interface modes ({} Hz), {} coupling",
+                 stage_name, structure_wall_name, bodies.front().model().kind(),
+                 bodies.front().modes().modes(),
                  fmt::join(bodies.front().modes().omega / (2 * std::numbers::pi), ", "),
                  coupling::to_string(bodies.front().options().scheme));
   }
@@ -667,6 +809,7 @@ void validate_simulate_scene(const io::Scene& scene) {
         "section",
         scene.file().string());
   validate_flow_scene(scene);
+  if (is_flow_scene(scene) && scene.has("structure")) validate_structure_model(scene);
   if (is_flow_scene(scene)) {
     if (!scene.array("load").empty())
       input_error(

@@ -105,4 +105,21 @@ modal::ModeSet read_mode_set(const io::ArtefactReader& reader) {
   return m;
 }
 
+fem::ElasticModel elastic_model(const io::Scene& scene) {
+  fem::ElasticModel model;
+  model.material = {scene.number("structure.material.youngs_modulus"),
+                    scene.number("structure.material.poisson_ratio"),
+                    scene.number("structure.material.density")};
+  model.plane = scene.string("structure.formulation") == "plane_stress"
+                    ? fem::PlaneAssumption::plane_stress
+                    : fem::PlaneAssumption::plane_strain;
+  model.thickness_m = scene.number("structure.thickness");
+  return model;
+}
+
+std::vector<std::string> clamped_groups(const io::Scene& scene) {
+  const std::string clamped = scene.string("structure.clamped");
+  return clamped.empty() ? std::vector<std::string>{} : std::vector<std::string>{clamped};
+}
+
 }  // namespace hm::driver

@@ -4,8 +4,11 @@
 // mesh it was computed on.
 #include <map>
 #include <string>
+#include <vector>
 
+#include "fem/material.hpp"
 #include "io/artefact.hpp"
+#include "io/scene.hpp"
 #include "mesh/boundary.hpp"
 #include "mesh/types.hpp"
 #include "modal/modes.hpp"
@@ -29,6 +32,12 @@ MeshArtefact read_structure_mesh(const io::ArtefactReader& reader);
 /// The mode set of a hydromodal.modes artefact, as far as modal superposition needs it: dim,
 /// λ, ω, f, ζ and the shapes as full DOF vectors (n_nodes·dim × n_modes, DOF = dim·node + c).
 modal::ModeSet read_mode_set(const io::ArtefactReader& reader);
+
+/// The linear material of the scene's [structure] (E, ν, ρ; 2-D section and thickness).
+fem::ElasticModel elastic_model(const io::Scene& scene);
+
+/// The clamped node groups of structure.clamped (none: a free-free body).
+std::vector<std::string> clamped_groups(const io::Scene& scene);
 
 /// XDMF sidecar of a mesh artefact: the structure with its quality field, and each wall.
 void write_mesh_xdmf(const std::filesystem::path& h5_path, const mesh::StructureMesh& mesh,

@@ -372,6 +372,21 @@ const SchemaSpec& results_schema() {
                     "Pa",
                     "coupled runs: the largest pressure of the structure's wall nodes at the "
                     "step's end"}),
+          optional({ds::monitor_structure_energy,
+                    DType::f64,
+                    {"n_steps", "5"},
+                    "J",
+                    "coupled runs: the structure's energy at the step's end (2-D: per its "
+                    "thickness), columns energy_columns: kinetic, strain, the work of the "
+                    "fluid's loads and the body's weight since the start, the energy taken by "
+                    "the structural damping, and the numerical dissipation (work − damping − "
+                    "change of kinetic + strain; CFPI: the error of the trapezoidal work sum)"}),
+          optional({ds::monitor_structure_solver_iterations,
+                    DType::i64,
+                    {"n_steps"},
+                    "",
+                    "coupled runs with a nonlinear structure model: Newton iterations of the "
+                    "structure in the step (predictor and corrector)"}),
           optional({ds::body_position,
                     DType::f64,
                     {"n_modal_rows"},
@@ -453,6 +468,11 @@ const SchemaSpec& checkpoint_schema() {
           f64("/bodies/a", {"n_bodies", "n_modes"}, "m*sqrt(kg)/s^2", "modal accelerations", false),
           f64("/bodies/F", {"n_bodies", "n_modes"}, "N/sqrt(kg)", "modal forces", false),
           f64("/bodies/added_mass", {"n_bodies", "n_modes", "n_modes"}, "1", "M hat", false),
+          f64("/bodies/model/*", {"*"}, "SI",
+              "the structure model's own state beyond its interface coordinates (a nonlinear "
+              "body: nodal u [m], v [m/s], a [m/s^2], load [N]; energy_balance [J]: its start, "
+              "the work, the damping)",
+              false),
           f64("/bodies/added_mass_initial", {"n_bodies", "n_modes", "n_modes"}, "1",
               "M hat at the start", false),
           f64("/run/monitors", {"n_steps", "n_monitor_fields"}, "column",

@@ -128,6 +128,11 @@ inline constexpr const char* monitor_structure_stretch = "/monitors/structure_st
 inline constexpr const char* monitor_coupling_seconds = "/monitors/coupling_seconds";
 inline constexpr const char* monitor_structure_deformation = "/monitors/structure_deformation";
 inline constexpr const char* monitor_structure_peak_pressure = "/monitors/structure_peak_pressure";
+/// The structure's energy balance per step, [n_steps, 5]: kinetic, strain, work of the loads,
+/// damping, numerical dissipation [J] (StructureEnergy).
+inline constexpr const char* monitor_structure_energy = "/monitors/structure_energy";
+inline constexpr const char* monitor_structure_solver_iterations =
+    "/monitors/structure_solver_iterations";
 inline constexpr const char* body_position = "/body/position";
 inline constexpr const char* body_velocity = "/body/velocity";
 }  // namespace ds
@@ -153,6 +158,11 @@ inline constexpr const char* phase_names = "phase_names";        ///< /run/phase
 inline constexpr const char* dx = "dx";                          ///< [m]
 inline constexpr const char* support = "support";                ///< h [m]
 inline constexpr const char* coupling_scheme = "coupling_scheme";  ///< explicit | strong
+/// The structure model (structure.model: linear_modal | nonlinear_fe; its law and scheme are
+/// in the parameters).
+inline constexpr const char* structure_model = "structure_model";
+/// The energy columns of /monitors/structure_energy, comma-separated.
+inline constexpr const char* energy_columns = "energy_columns";
 /// Largest max|Σ Φ y| / body size of the run: above 0.05 the linear modes stretch visibly.
 inline constexpr const char* max_structure_stretch = "max_structure_stretch";
 /// Coupling wall-clock totals [s]: loads, CFPI, wall updates, added-mass solves (not the PPE

@@ -64,7 +64,8 @@ int main(int argc, char** argv) {
                   "[fluid] and [structure] (its surface becomes the wall \"structure\")"},
                  {"modes",
                   "modes artefact written by fsi-modes: the structure of a structure-only run "
-                  "(a scene with [[load]]s and no [fluid]; needs --mesh for the node groups)"},
+                  "(a scene with [[load]]s and no [fluid]; needs --mesh for the node groups), or "
+                  "the interface modes of a coupled run with structure.model = \"nonlinear_fe\""},
                  {"restart",
                   "checkpoint of this scene's run (checkpoints/t_<time>.h5, written every "
                   "time.checkpoint_interval): continue from it; with the same inputs the result "
