@@ -1,8 +1,10 @@
 #include "coupling/nonlinear_fe_model.hpp"
 
+#include <fmt/ranges.h>
 #include <Eigen/Dense>
 
 #include "core/errors.hpp"
+#include "core/log.hpp"
 #include "coupling/flexible_body.hpp"
 #include "fem/nonlinear_static.hpp"
 
@@ -46,8 +48,9 @@ void NonlinearFeModel<D>::update_kept() {
   q_ = project(s.u);
   q_dot_ = project(s.v);
   q_ddot_ = project(s.a);
-  wall_ = {parts_.wall_map->to_wall(s.u), parts_.wall_map->to_wall(s.v),
-           parts_.wall_map->to_wall(s.a)};
+  // The wall's position is the body's; its velocity and acceleration are those of the interface
+  // modes (the file comment).
+  wall_ = {parts_.wall_map->to_wall(s.u), modes_->shapes * q_dot_, modes_->shapes * q_ddot_};
 }
 
 template <int D>
@@ -118,8 +121,10 @@ void NonlinearFeModel<D>::solve(double dt, const Eigen::VectorXd& load_end) {
   iterations_ += report.iterations;
   if (!report.converged)
     throw StructureFailed(fmt::format(
-        "{}: the step from t = {:.9g} s to {:.9g} s did not converge (in {} substeps): {}",
-        parts_.context, time(), time() + dt, report.substeps, report.failure));
+        "{}: the step from t = {:.9g} s to {:.9g} s did not converge, not even in parts of "
+        "1/2^{} of it ({} parts converged before): {}",
+        parts_.context, time(), time() + dt, parts_.dynamics.max_step_halvings, report.substeps,
+        report.failure));
 }
 
 template <int D>
@@ -131,19 +136,22 @@ AffineAnswer NonlinearFeModel<D>::predict(double dt) {
   const fem::DynamicState& trial = dynamics_->trial();
   const Eigen::VectorXd mean = (trial.v - s.v) / dt;
   predicted_u_ = parts_.wall_map->to_wall(trial.u);
-  predicted_a_ = parts_.wall_map->to_wall(mean);
-  start_v_ = parts_.wall_map->to_wall(s.v);
   predicted_alpha_ = project(mean);
   AffineAnswer answer;
   answer.slope = mass_modes_.transpose() * dynamics_->mean_acceleration_response(mass_modes_);
   answer.offset = predicted_alpha_ - answer.slope * F_;
+  spdlog::debug(
+      "{}: predictor to t = {:.6g} s: {} Newton iterations; mean interface "
+      "acceleration [{:.4g}], kept [{:.4g}]",
+      parts_.context, time() + dt, iterations_, fmt::join(predicted_alpha_, ", "),
+      fmt::join(q_ddot_, ", "));
   return answer;
 }
 
 template <int D>
 WallFields NonlinearFeModel<D>::wall_in_step(const Eigen::VectorXd& mean_acceleration) const {
-  const Eigen::VectorXd a = predicted_a_ + modes_->shapes * (mean_acceleration - predicted_alpha_);
-  return {predicted_u_, start_v_ + step_dt_ * a, a};
+  const Eigen::VectorXd a = modes_->shapes * mean_acceleration;
+  return {predicted_u_, modes_->shapes * (q_dot_ + step_dt_ * mean_acceleration), a};
 }
 
 template <int D>

@@ -1,5 +1,7 @@
 #include "driver/map_stage.hpp"
 
+#include <optional>
+
 #include <fmt/format.h>
 
 #include "core/errors.hpp"
@@ -16,13 +18,34 @@ namespace {
 
 namespace ds = io::ds;
 
+/// A mode set's reduced basis (modes.derivatives): mapped like the modes, for
+/// structure.model = "nonlinear_modal".
+struct SourceBasis {
+  Eigen::MatrixXd vectors;  ///< n_surface_vertices·dim × n_basis
+  io::IndexMatrixRM origin;
+  Eigen::VectorXd omega;
+  io::MatrixRM participation_translation, participation_rotation;
+};
+
 /// What fsi-map takes from a mode artefact.
 struct SourceModes {
   mesh::SurfaceMesh surface;
   Eigen::MatrixXd shapes;  ///< n_surface_vertices·dim × n_modes (DOF = dim·vertex + c)
   Eigen::VectorXd frequencies_hz, omega, damping_ratio;
   io::MatrixRM participation_translation, participation_rotation;
+  std::optional<SourceBasis> basis;  ///< none in a set without modes.derivatives
 };
+
+std::optional<SourceBasis> read_source_basis(const io::ArtefactReader& r) {
+  if (!r.has(ds::basis_surface_vectors)) return std::nullopt;
+  SourceBasis b;
+  b.vectors = r.read_columns(ds::basis_surface_vectors);  // [vector][vertex][c]
+  b.origin = r.read_indices(ds::basis_origin);
+  b.omega = r.read_vector(ds::basis_omega);
+  b.participation_translation = r.read_matrix(ds::basis_participation_translation);
+  b.participation_rotation = r.read_matrix(ds::basis_participation_rotation);
+  return b;
+}
 
 SourceModes read_source_modes(const io::ArtefactReader& r) {
   SourceModes s;
@@ -35,6 +58,7 @@ SourceModes read_source_modes(const io::ArtefactReader& r) {
   s.damping_ratio = r.read_vector(ds::damping_ratio);
   s.participation_translation = r.read_matrix(ds::participation_translation);
   s.participation_rotation = r.read_matrix(ds::participation_rotation);
+  s.basis = read_source_basis(r);
   return s;
 }
 
@@ -136,6 +160,21 @@ void write_mapped(io::ArtefactWriter& w, const mesh::SurfaceMesh& target,
   w.set_attribute("mean_neighbours", q.mean_neighbours);
 }
 
+/// The mapped basis and its data beside the mapped modes.
+void write_mapped_basis(io::ArtefactWriter& w, const mesh::SurfaceMesh& target,
+                        const io::MatrixRM& vectors, const SourceBasis& b,
+                        const Eigen::VectorXd& errors) {
+  w.write(
+      ds::mapped_basis, vectors.data(),
+      {static_cast<std::uint64_t>(b.vectors.cols()),
+       static_cast<std::uint64_t>(target.vertices.rows()), static_cast<std::uint64_t>(target.dim)});
+  w.write(ds::basis_origin, b.origin);
+  w.write_vector(ds::basis_omega, b.omega);
+  w.write(ds::basis_participation_translation, b.participation_translation);
+  w.write(ds::basis_participation_rotation, b.participation_rotation);
+  w.write_vector(ds::mapped_basis_field_error, errors);
+}
+
 std::vector<io::InputRecord> map_inputs(const io::Scene& scene,
                                         const std::filesystem::path& modes) {
   std::vector<io::InputRecord> inputs{io::input_record("scene", scene.file()),
@@ -146,7 +185,7 @@ std::vector<io::InputRecord> map_inputs(const io::Scene& scene,
 }
 
 void write_mapped_xdmf(const std::filesystem::path& h5, const mesh::SurfaceMesh& target,
-                       Eigen::Index n_modes) {
+                       Eigen::Index n_modes, Eigen::Index n_basis) {
   const auto n = static_cast<std::uint64_t>(target.vertices.rows());
   const auto dim = static_cast<std::uint64_t>(target.dim);
   io::XdmfGrid grid{.name = "mapped_modes",
@@ -164,6 +203,12 @@ void write_mapped_xdmf(const std::filesystem::path& h5, const mesh::SurfaceMesh&
                            ds::mapped_shapes,
                            {static_cast<std::uint64_t>(n_modes), n, dim},
                            m});
+  for (Eigen::Index k = 0; k < n_basis; ++k)
+    grid.fields.push_back({fmt::format("basis_{}", k + 1),
+                           true,
+                           ds::mapped_basis,
+                           {static_cast<std::uint64_t>(n_basis), n, dim},
+                           k});
   io::write_xdmf(std::filesystem::path(h5).replace_extension(".xdmf"), h5, {grid});
 }
 
@@ -199,12 +244,21 @@ void run_map_stage(const io::Scene& scene, const std::filesystem::path& modes_ar
   const rbf::QualityReport quality = map.quality_report(component_fields);
   check_far_targets(quality, target, scene);
   const Eigen::VectorXd errors = mode_errors(quality, source.shapes.cols(), dim);
+  // The reduced basis, by the same interpolation (the modes' shapes above stay as they were).
+  io::MatrixRM basis;
+  Eigen::VectorXd basis_errors;
+  if (source.basis) {
+    Eigen::MatrixXd basis_fields;
+    basis = map_modes(map, source.basis->vectors, dim, basis_fields);
+    basis_errors = mode_errors(map.quality_report(basis_fields), basis.rows(), dim);
+  }
 
   io::ArtefactWriter writer(output, io::mapped_modes_schema(), "fsi-map",
                             scene.parameters_for("fsi-map"), map_inputs(scene, modes_artefact));
   write_mapped(writer, target, shapes, source, errors, quality);
+  if (source.basis) write_mapped_basis(writer, target, basis, *source.basis, basis_errors);
   writer.commit();
-  write_mapped_xdmf(output, target, source.shapes.cols());
+  write_mapped_xdmf(output, target, source.shapes.cols(), basis.rows());
   spdlog::info(
       "fsi-map: {} modes from {} structure surface nodes onto {} target vertices; support "
       "radius {:.3g} m ({:.3g} spacings), condition estimate {:.3g}, {:.1f} neighbours per "
@@ -212,6 +266,11 @@ void run_map_stage(const io::Scene& scene, const std::filesystem::path& modes_ar
       source.shapes.cols(), source.surface.vertices.rows(), target.vertices.rows(),
       quality.support_radius, quality.support_radius / quality.source_spacing,
       quality.condition_estimate, quality.mean_neighbours, fmt::join(errors, ", "));
+  if (source.basis)
+    spdlog::info(
+        "fsi-map: the reduced basis, {} vectors (nonlinear_modal's interface); interpolation "
+        "error estimate per vector: {:.2e}",
+        basis.rows(), fmt::join(basis_errors, ", "));
 }
 
 }  // namespace hm::driver

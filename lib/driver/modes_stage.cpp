@@ -1,7 +1,10 @@
 #include "driver/modes_stage.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
+#include <numbers>
+#include <optional>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -12,6 +15,9 @@
 #include "driver/structure_io.hpp"
 #include "fem/assembly.hpp"
 #include "fem/dof_map.hpp"
+#include "fem/hyperelastic_body.hpp"
+#include "fem/reduced_basis.hpp"
+#include "fem/reduced_stvk.hpp"
 #include "io/artefact.hpp"
 #include "io/atomic_file.hpp"
 #include "io/xdmf.hpp"
@@ -108,6 +114,58 @@ io::MatrixRM surface_shapes(const Eigen::MatrixXd& shapes,
   return out;
 }
 
+/// The reduced model of structure.model = "nonlinear_modal" (modes.derivatives): the basis of
+/// the modes and their static modal derivatives, its Saint Venant–Kirchhoff tensors and its
+/// participation factors.
+struct ReducedModel {
+  fem::ReducedBasis basis;
+  std::optional<fem::ReducedStvk> tensors;
+  Eigen::MatrixXd participation_translation, participation_rotation;  ///< VᵀMT, VᵀMR
+  double derivatives_seconds = 0.0;  ///< the body, Θ and the orthonormalisation [s]
+};
+
+/// modes.derivative_modes as fem::BasisOptions::derivative_modes (−1: every mode); InputError
+/// naming the key when the set has fewer modes.
+int derivative_modes(const io::Scene& scene, int mode_count) {
+  const auto k = static_cast<int>(scene.integer("modes.derivative_modes"));
+  if (k > mode_count)
+    input_error("{} = {}: the mode set has {} modes; give at most {} (0: every mode)",
+                scene.where("modes.derivative_modes"), k, mode_count, mode_count);
+  return k == 0 ? -1 : k;
+}
+
+/// V = [Φ, Θ] from the computed modes and its tensors with the scene's linear material (the
+/// Lamé constants of E and ν) as a Saint Venant–Kirchhoff body.
+ReducedModel reduced_model(const io::Scene& scene, const MeshArtefact& mesh,
+                           const fem::DofMap& dofs, const fem::SystemMatrices& system,
+                           const modal::ModeSet& modes) {
+  const auto begin = std::chrono::steady_clock::now();
+  const std::string context = scene.where("modes.derivatives");
+  const fem::HyperelasticBody body(
+      mesh.structure, {elastic_model(scene), fem::MaterialLaw::saint_venant_kirchhoff}, context);
+  const fem::BasisOptions options{.modes = modes.count(),
+                                  .derivatives = true,
+                                  .derivative_modes = derivative_modes(scene, modes.count())};
+  ReducedModel out;
+  out.basis =
+      fem::build_reduced_basis(body, dofs, {modes.shapes, modes.eigenvalues, 0}, options, context);
+  out.derivatives_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+  out.tensors.emplace(body, out.basis.vectors, context);
+  const Eigen::MatrixXd vtm = out.basis.vectors.transpose() * system.mass;
+  out.participation_translation = vtm * fem::rigid_translations(mesh.structure);
+  out.participation_rotation = vtm * fem::rigid_rotations(mesh.structure, modes.reference_point);
+  return out;
+}
+
+/// sqrt(K1_ii / M_r,ii) of every basis vector [rad/s].
+Eigen::VectorXd basis_omega(const fem::ReducedStvk& tensors) {
+  return (tensors.linear_stiffness().diagonal().array() / tensors.mass().diagonal().array())
+      .cwiseMax(0.0)
+      .sqrt()
+      .matrix();
+}
+
 void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes, const MeshArtefact& mesh) {
   const auto n_modes = static_cast<std::uint64_t>(modes.count());
   const auto n_nodes = static_cast<std::uint64_t>(mesh.structure.node_count());
@@ -136,6 +194,36 @@ void write_modes(io::ArtefactWriter& w, const modal::ModeSet& modes, const MeshA
   w.write(ds::modes_surface_node, mesh.surface.volume_node);
 }
 
+void write_reduced_model(io::ArtefactWriter& w, const ReducedModel& r, const MeshArtefact& mesh) {
+  const fem::ReducedStvk& t = *r.tensors;
+  const auto n_basis = static_cast<std::uint64_t>(t.size());
+  const auto n_nodes = static_cast<std::uint64_t>(mesh.structure.node_count());
+  const auto dim = static_cast<std::uint64_t>(mesh.structure.dim);
+  const auto n_surface = static_cast<std::uint64_t>(mesh.surface.volume_node.size());
+  w.write(ds::basis_vectors, stacked_shapes(t.basis()).data(), {n_basis, n_nodes, dim});
+  w.write(ds::basis_surface_vectors,
+          surface_shapes(t.basis(), mesh.surface.volume_node, mesh.structure.dim).data(),
+          {n_basis, n_surface, dim});
+  io::IndexMatrixRM origin(t.size(), 2);
+  for (Eigen::Index k = 0; k < t.size(); ++k)
+    origin.row(k) << r.basis.origin[static_cast<std::size_t>(k)][0],
+        r.basis.origin[static_cast<std::size_t>(k)][1];
+  w.write(ds::basis_origin, origin);
+  w.write_vector(ds::basis_omega, basis_omega(t));
+  w.write(ds::basis_participation_translation, io::MatrixRM(r.participation_translation));
+  w.write(ds::basis_participation_rotation, io::MatrixRM(r.participation_rotation));
+  w.write(ds::reduced_mass, io::MatrixRM(t.mass()));
+  w.write(ds::reduced_linear, io::MatrixRM(t.linear_stiffness()));
+  w.write(ds::reduced_quadratic, io::MatrixRM(t.quadratic()));
+  w.write(ds::reduced_cubic, io::MatrixRM(t.cubic()));
+  w.set_attribute(io::modes_attr::basis_modes, static_cast<std::int64_t>(r.basis.mode_count));
+  w.set_attribute(io::modes_attr::basis_derivatives,
+                  static_cast<std::int64_t>(r.basis.derivative_count));
+  w.set_attribute(io::modes_attr::basis_dropped, static_cast<std::int64_t>(r.basis.dropped));
+  w.set_attribute(io::modes_attr::derivatives_seconds, r.derivatives_seconds);
+  w.set_attribute(io::modes_attr::tensor_seconds, t.setup_seconds());
+}
+
 void write_solver_attributes(io::ArtefactWriter& w, const modal::ModeSet& modes) {
   const modal::SolverInfo& s = modes.solver;
   w.set_attribute("solver_backend", s.backend);
@@ -153,8 +241,14 @@ void write_solver_attributes(io::ArtefactWriter& w, const modal::ModeSet& modes)
   w.set_attribute("max_orthogonality_error", modes.orthogonality_error);
 }
 
+/// "theta_1_2" for the derivative of modes 1 and 2, "mode_3" for mode 3 (1-based).
+std::string basis_field_name(const std::array<int, 2>& origin) {
+  return origin[1] < 0 ? fmt::format("mode_{}", origin[0] + 1)
+                       : fmt::format("theta_{}_{}", origin[0] + 1, origin[1] + 1);
+}
+
 void write_modes_xdmf(const std::filesystem::path& h5, const MeshArtefact& mesh,
-                      const modal::ModeSet& modes) {
+                      const modal::ModeSet& modes, const ReducedModel* reduced) {
   const auto& m = mesh.structure;
   const auto n_nodes = static_cast<std::uint64_t>(m.node_count());
   io::XdmfGrid grid{.name = "modes",
@@ -173,6 +267,15 @@ void write_modes_xdmf(const std::filesystem::path& h5, const MeshArtefact& mesh,
          ds::shapes,
          {static_cast<std::uint64_t>(modes.count()), n_nodes, static_cast<std::uint64_t>(m.dim)},
          i});
+  if (reduced != nullptr) {
+    const auto n_basis = static_cast<std::uint64_t>(reduced->basis.size());
+    for (std::size_t k = 0; k < reduced->basis.origin.size(); ++k)
+      grid.fields.push_back({"basis_" + basis_field_name(reduced->basis.origin[k]),
+                             true,
+                             ds::basis_vectors,
+                             {n_basis, n_nodes, static_cast<std::uint64_t>(m.dim)},
+                             static_cast<int>(k)});
+  }
   io::write_xdmf(std::filesystem::path(h5).replace_extension(".xdmf"), h5, {grid});
 }
 
@@ -188,6 +291,18 @@ void log_frequency_table(const modal::ModeSet& modes) {
                modes.solver.op_applications, table);
 }
 
+void log_reduced_model(const ReducedModel& r, const modal::ModeSet& modes) {
+  const fem::ReducedStvk& t = *r.tensors;
+  const double eigensolver = modes.solver.factorisation_seconds + modes.solver.lanczos_seconds;
+  spdlog::info(
+      "fsi-modes: reduced basis (nonlinear_modal): {} modes + {} modal derivatives = {} "
+      "vectors ({} dropped as dependent); derivatives {:.3f} s, tensors {:.3f} s ({} + {} + {} "
+      "coefficients), eigensolver {:.3f} s; basis frequencies sqrt(K1_ii) [Hz]: {:.5g}",
+      r.basis.mode_count, r.basis.derivative_count, t.size(), r.basis.dropped,
+      r.derivatives_seconds, t.setup_seconds(), t.linear_stiffness().size(), t.quadratic().size(),
+      t.cubic().size(), eigensolver, fmt::join(basis_omega(t) / (2 * std::numbers::pi), ", "));
+}
+
 /// The canonical parameter lines of fsi-modes without modes.archived (which names the archive
 /// and so differs between the run that made a set and the runs that reuse it).
 std::vector<std::string> modes_parameter_lines(const std::string& parameters) {
@@ -196,6 +311,20 @@ std::vector<std::string> modes_parameter_lines(const std::string& parameters) {
   for (std::string line; std::getline(in, line);)
     if (!line.empty() && line.rfind("modes.archived", 0) != 0) lines.push_back(line);
   return lines;
+}
+
+/// Whether `line` ("key = value") sets a key the archived set's parameters `was` do not mention
+/// to its declared default: a key added to fsi-modes since the set was made (modes.derivatives
+/// came with schema version 2), which asks for what the set was computed as.
+bool added_since(const std::string& line, const std::vector<std::string>& was) {
+  const std::string key = line.substr(0, line.find(" = "));
+  if (std::any_of(was.begin(), was.end(),
+                  [&](const std::string& w) { return w.rfind(key + " = ", 0) == 0; }))
+    return false;
+  const auto& keys = io::scene_keys();
+  const auto decl =
+      std::find_if(keys.begin(), keys.end(), [&](const io::KeyDecl& d) { return d.path == key; });
+  return decl != keys.end() && line == key + " = " + decl->default_text;
 }
 
 /// modes.archived: checks that the archived set was computed for this scene's fsi-modes keys and
@@ -208,11 +337,18 @@ void reuse_archived_modes(const io::Scene& scene, const MeshArtefact& mesh,
   if (!std::filesystem::exists(archived))
     input_error("{}: archived mode set '{}' does not exist", where, archived.string());
   const io::ArtefactReader r(archived, io::modes_schema());
+  if (scene.boolean("modes.derivatives") && !r.has(ds::reduced_cubic))
+    input_error(
+        "{}: the archived mode set '{}' has no reduced model (it was computed without "
+        "modes.derivatives), which {} = true asks for (structure.model = \"nonlinear_modal\" "
+        "runs on it): archive a set computed with modes.derivatives = true, or remove "
+        "modes.archived",
+        where, archived.string(), scene.where("modes.derivatives"));
   const auto was = modes_parameter_lines(r.provenance().parameters);
   const auto now = modes_parameter_lines(scene.parameters_for("fsi-modes"));
   std::vector<std::string> differences;
   for (const std::string& line : now)
-    if (std::find(was.begin(), was.end(), line) == was.end())
+    if (std::find(was.begin(), was.end(), line) == was.end() && !added_since(line, was))
       differences.push_back("scene: " + line);
   for (const std::string& line : was)
     if (std::find(now.begin(), now.end(), line) == now.end())
@@ -251,6 +387,19 @@ void validate_modes_scene(const io::Scene& scene) {
   require_structure(scene);
   fem::validate(elastic_model(scene), scene.dimension(), "structure");
   (void)damping(scene);
+  const bool derivatives = scene.boolean("modes.derivatives");
+  if (scene.string("structure.model") == "nonlinear_modal" && !derivatives)
+    input_error(
+        "{} = \"nonlinear_modal\" runs on the reduced model of modes.h5 (the modes, their modal "
+        "derivatives and its tensors): set {} = true",
+        scene.where("structure.model"), "modes.derivatives");
+  if (derivatives && scene.number("modes.max_frequency_hz") <= 0)
+    (void)derivative_modes(scene, static_cast<int>(scene.integer("modes.count")));
+  if (derivatives && clamped_groups(scene).empty())
+    input_error(
+        "{} = true: modal derivatives need a clamped body (the linear stiffness is singular on a "
+        "free one); set structure.clamped",
+        scene.where("modes.derivatives"));
 }
 
 void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_artefact,
@@ -267,8 +416,11 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
     return;
   }
 
-  // Phases: assembly, eigensolver, checks and output (a bar on a terminal, lines in logs).
-  Progress progress("fsi-modes", 3, "phases", spdlog::get_level() > spdlog::level::info);
+  // Phases: assembly, eigensolver, (the reduced model,) checks and output (a bar on a terminal,
+  // lines in logs).
+  const bool derivatives = scene.boolean("modes.derivatives");
+  Progress progress("fsi-modes", derivatives ? 4 : 3, "phases",
+                    spdlog::get_level() > spdlog::level::info);
   const auto start = std::chrono::steady_clock::now();
   const auto seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -289,6 +441,12 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
   const modal::ModeSet modes = modal::build_mode_set(solution, system, dofs, mesh.structure,
                                                      reference_point(scene), damping(scene));
   const bool converged = solution.pairs.status == modal::EigenStatus::converged;
+  std::optional<ReducedModel> reduced;
+  if (derivatives && converged) {
+    reduced = reduced_model(scene, mesh, dofs, system, modes);
+    spdlog::info("fsi-modes: reduced model done, {:.2f} s", seconds());
+    progress.update(3);
+  }
 
   const std::filesystem::path target =
       converged ? output : std::filesystem::path(output).replace_extension(".failed.h5");
@@ -296,6 +454,7 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
       target, io::modes_schema(), "fsi-modes", scene.parameters_for("fsi-modes"),
       {io::input_record("scene", scene.file()), io::input_record("mesh", mesh_artefact)});
   write_modes(writer, modes, mesh);
+  if (reduced) write_reduced_model(writer, *reduced, mesh);
   write_solver_attributes(writer, modes);
   if (!converged)
     writer.set_attribute(
@@ -309,9 +468,10 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
         "modes are in '{}', nothing was written at '{}'",
         modes.solver.status, modes.solver.converged, modes.solver.requested, modes.solver.message,
         target.string(), output.string());
-  write_modes_xdmf(output, mesh, modes);
+  write_modes_xdmf(output, mesh, modes, reduced ? &*reduced : nullptr);
   progress.finish();
   log_frequency_table(modes);
+  if (reduced) log_reduced_model(*reduced, modes);
 }
 
 }  // namespace hm::driver

@@ -16,6 +16,7 @@
 #include "coupling/free_motion.hpp"
 #include "coupling/linear_modal_model.hpp"
 #include "coupling/nonlinear_fe_model.hpp"
+#include "coupling/nonlinear_modal_model.hpp"
 #include "coupling/probes.hpp"
 #include "coupling/run.hpp"
 #include "coupling/structure_run.hpp"
@@ -26,6 +27,7 @@
 #include "fem/hyperelastic.hpp"
 #include "fem/static_solve.hpp"
 #include "io/artefact.hpp"
+#include "io/hash.hpp"
 #include "io/probe_csv.hpp"
 #include "ldd/snapshots.hpp"
 #include "motion/time_table.hpp"
@@ -122,11 +124,14 @@ std::string describe_walls(const FlowSetup<D>& setup, const io::Scene& scene) {
 
 // ---- coupled runs ---------------------------------------------------------------------------
 
-/// The flexible body of a coupled scene: mapped.h5's target surface and its modes.
+/// The flexible body of a coupled scene: mapped.h5's target surface, its modes and, from a mode
+/// set with modes.derivatives, its reduced basis (the interface of nonlinear_modal; its ζ and
+/// its rotation reference are set by reduced_interface).
 template <int D>
 struct MappedBody {
   mesh::SurfaceMesh surface;
   coupling::ModalSurface<D> modes;
+  std::optional<coupling::ModalSurface<D>> basis;
 };
 
 template <int D>
@@ -146,6 +151,15 @@ MappedBody<D> read_mapped_body(const std::filesystem::path& file) {
   body.modes.zeta = r.read_vector(ds::damping_ratio);
   body.modes.participation = r.read_matrix(ds::participation_translation);
   body.modes.rotation_participation = r.read_matrix(ds::participation_rotation);
+  if (r.has(ds::mapped_basis)) {
+    coupling::ModalSurface<D>& basis = body.basis.emplace();
+    basis.x0 = body.modes.x0;
+    basis.shapes = r.read_columns(ds::mapped_basis);  // [vector][vertex][c]
+    basis.omega = r.read_vector(ds::basis_omega);
+    basis.zeta = Eigen::VectorXd::Zero(basis.omega.size());
+    basis.participation = r.read_matrix(ds::basis_participation_translation);
+    basis.rotation_participation = r.read_matrix(ds::basis_participation_rotation);
+  }
   return body;
 }
 
@@ -178,22 +192,32 @@ void check_nonlinear_scene(const io::Scene& scene) {
 /// The scene keys of a structure model, checked without artefacts (--validate).
 void validate_structure_model(const io::Scene& scene) {
   check_nonlinear_scene(scene);
-  if (scene.string("structure.model") == "linear_modal") return;
+  const std::string model = scene.string("structure.model");
+  if (model == "linear_modal") return;
   const fem::HyperelasticModel material{
       elastic_model(scene), fem::material_law_from(scene.string("structure.material.law"),
                                                    scene.where("structure.material.law"))};
   fem::validate(material, scene.dimension(), scene.where("structure.material.poisson_ratio"));
+  if (model == "nonlinear_modal" && material.law != fem::MaterialLaw::saint_venant_kirchhoff)
+    input_error(
+        "{} = \"{}\" with {} = \"nonlinear_modal\": the reduced model's cubic force is exact "
+        "for saint_venant_kirchhoff only (its tensors come from the Lamé constants of E and nu); "
+        "use law = \"saint_venant_kirchhoff\", or structure.model = \"nonlinear_fe\" for "
+        "neo_hookean",
+        scene.where("structure.material.law"), scene.string("structure.material.law"),
+        scene.where("structure.model"));
 }
 
-/// The dynamics options of a nonlinear structure model: scheme, ρ∞, Newton's tolerance and the
-/// Rayleigh damping of the modes' ζ (fitted at the two lowest frequencies) plus the scene's own
-/// Rayleigh α and β.
+/// The dynamics options of a nonlinear structure model: scheme, ρ∞, Newton's tolerance and
+/// iterations, and the Rayleigh damping of the modes' ζ (fitted at the two lowest frequencies)
+/// plus the scene's own Rayleigh α and β.
 fem::DynamicsOptions dynamics_options(const io::Scene& scene, const Eigen::VectorXd& omega) {
   fem::DynamicsOptions o;
   o.scheme = fem::time_scheme_from(scene.string("structure.time_scheme"),
                                    scene.where("structure.time_scheme"));
   o.rho_infinity = scene.number("structure.rho_infinity");
   o.newton.tolerance = scene.number("structure.newton_tolerance");
+  o.newton.max_iterations = static_cast<int>(scene.integer("structure.newton_max_iterations"));
   const Eigen::VectorXd ratios = scene.vector("modes.damping_ratios");
   const double zeta = ratios.size() > 0 ? ratios[0] : scene.number("modes.damping_ratio");
   const coupling::RayleighFit fit = coupling::rayleigh_for(zeta, omega.size() > 0 ? omega[0] : 0.0,
@@ -257,14 +281,95 @@ std::unique_ptr<coupling::StructureModel<D>> nonlinear_fe_model(
   return std::make_unique<coupling::NonlinearFeModel<D>>(std::move(interface), std::move(parts));
 }
 
+/// The interface of structure.model = "nonlinear_modal": mapped.h5's basis, with the modal
+/// damping's Rayleigh ratio ζ_i = α/(2ω_i) + βω_i/2 of each vector (informative: the model
+/// damps by α M_r + β K1). InputError naming the file and what to do when modes.h5 has no
+/// reduced model or mapped.h5 no basis, or when mapped.h5 was mapped from another mode set.
+template <int D>
+coupling::ModalSurface<D> reduced_interface(const io::Scene& scene, const SimulateInputs& inputs,
+                                            const MappedBody<D>& mapped) {
+  if (inputs.modes.empty())
+    throw UsageError(fmt::format(
+        "{}: {} = \"nonlinear_modal\" needs --modes modes.h5 (the reduced model's tensors)",
+        stage_name, scene.where("structure.model")));
+  const io::ArtefactReader modes(inputs.modes, io::modes_schema());
+  if (!modes.has(ds::reduced_cubic)) {
+    const std::string archived = scene.string("modes.archived");
+    input_error(
+        "{}: the mode set{} has no reduced model (basis and tensors), which {} = "
+        "\"nonlinear_modal\" runs on: set modes.derivatives = true and rerun fsi-modes and "
+        "fsi-map{}",
+        inputs.modes.string(),
+        archived.empty()
+            ? std::string()
+            : fmt::format(" (the archived set {})", scene.file_path("modes.archived").string()),
+        scene.where("structure.model"),
+        archived.empty() ? std::string() : " (with an archived set computed so)");
+  }
+  if (!mapped.basis)
+    input_error(
+        "{}: mapped from a mode set without the reduced basis; {} has one: rerun fsi-map on it",
+        inputs.mapped.string(), inputs.modes.string());
+  const io::Provenance p = io::read_artefact_provenance(inputs.mapped);
+  const auto source = std::find_if(p.inputs.begin(), p.inputs.end(),
+                                   [](const io::InputRecord& r) { return r.role == "modes"; });
+  if (source != p.inputs.end() && source->sha256 != io::sha256_file(inputs.modes))
+    input_error(
+        "{}: mapped from another mode set ({}) than {}: their bases would not match; rerun "
+        "fsi-map on {}",
+        inputs.mapped.string(), source->path, inputs.modes.string(), inputs.modes.string());
+  coupling::ModalSurface<D> basis = *mapped.basis;
+  const fem::DynamicsOptions d = dynamics_options(scene, mapped.modes.omega);
+  for (Eigen::Index k = 0; k < basis.modes(); ++k) {
+    const double w = basis.omega[k];
+    basis.zeta[k] = w > 0.0 ? d.rayleigh_alpha / (2 * w) + d.rayleigh_beta * w / 2 : 0.0;
+  }
+  return basis;
+}
+
+/// The reduced model of structure.model = "nonlinear_modal" on its interface (the mapped basis):
+/// modes.h5's tensors, integrated as structure.time_scheme says.
+template <int D>
+std::unique_ptr<coupling::StructureModel<D>> nonlinear_modal_model(
+    const io::Scene& scene, const SimulateInputs& inputs,
+    std::shared_ptr<const coupling::ModalSurface<D>> interface) {
+  const io::ArtefactReader reader(inputs.modes, io::modes_schema());
+  std::optional<fem::ReducedStvk> tensors = read_reduced_model(reader);
+  HM_ASSERT(tensors.has_value(), "{} lost its reduced model", inputs.modes.string());
+  const Eigen::MatrixXi origin = reader.read_indices(ds::basis_origin).cast<int>();
+  coupling::NonlinearModalParts parts;
+  parts.tensors = std::make_unique<fem::ReducedStvk>(std::move(*tensors));
+  parts.dynamics = dynamics_options(scene, reader.read_vector(ds::omega));
+  parts.context = fmt::format("structure '{}'", structure_wall_name);
+  const auto derivatives = (origin.col(1).array() >= 0).count();
+  spdlog::info(
+      "{}: structure model nonlinear_modal: {} basis vectors ({} modes, {} modal derivatives), "
+      "{} (rho_inf {}), Rayleigh alpha {:.4g} 1/s, beta {:.4g} s; {} PPE solves per added-mass "
+      "measurement",
+      stage_name, parts.tensors->size(), parts.tensors->size() - derivatives, derivatives,
+      scene.string("structure.time_scheme"), parts.dynamics.rho_infinity,
+      parts.dynamics.rayleigh_alpha, parts.dynamics.rayleigh_beta, parts.tensors->size());
+  if (parts.dynamics.scheme == fem::TimeScheme::generalized_alpha &&
+      parts.dynamics.rho_infinity < 1.0)
+    spdlog::warn(
+        "{}: {} = \"generalized_alpha\" at rho_infinity {}: the fluid's load enters with the "
+        "weight 1 - alpha_f, the inertia with 1 - alpha_m, which misstates a strong added mass; "
+        "energy_conserving treats both alike",
+        stage_name, scene.where("structure.time_scheme"), parts.dynamics.rho_infinity);
+  return std::make_unique<coupling::NonlinearModalModel<D>>(std::move(interface), std::move(parts));
+}
+
 /// The structure model of structure.model on the mapped interface.
 template <int D>
 std::unique_ptr<coupling::StructureModel<D>> structure_model(
     const io::Scene& scene, const SimulateInputs& inputs,
     std::shared_ptr<const coupling::ModalSurface<D>> interface, const mesh::SurfaceMesh& wall) {
   check_nonlinear_scene(scene);
-  if (scene.string("structure.model") == "nonlinear_fe")
+  const std::string model = scene.string("structure.model");
+  if (model == "nonlinear_fe")
     return nonlinear_fe_model<D>(scene, inputs, std::move(interface), wall);
+  if (model == "nonlinear_modal")
+    return nonlinear_modal_model<D>(scene, inputs, std::move(interface));
   return std::make_unique<coupling::LinearModalModel<D>>(std::move(interface));
 }
 
@@ -505,6 +610,8 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   std::vector<SurfaceProbe> displacement;
   std::optional<coupling::FreeTranslation> free;
   if (mapped) {
+    if (scene.string("structure.model") == "nonlinear_modal")
+      mapped->modes = reduced_interface<D>(scene, inputs, *mapped);
     displacement = surface_probes<D>(scene, mapped->modes);
     free = free_translation<D>(scene, mapped->modes);
     // The rotational participation factors are about the mode stage's reference point.

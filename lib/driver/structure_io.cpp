@@ -1,6 +1,9 @@
 #include "driver/structure_io.hpp"
 
+#include <algorithm>
+
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/errors.hpp"
 #include "io/xdmf.hpp"
@@ -103,6 +106,23 @@ modal::ModeSet read_mode_set(const io::ArtefactReader& reader) {
   m.dim = static_cast<int>(dims[2]);
   m.shapes = reader.read_columns(ds::shapes);
   return m;
+}
+
+std::optional<fem::ReducedStvk> read_reduced_model(const io::ArtefactReader& reader) {
+  const std::vector<const char*> parts{ds::basis_vectors, ds::reduced_mass, ds::reduced_linear,
+                                       ds::reduced_quadratic, ds::reduced_cubic};
+  const auto present = std::count_if(parts.begin(), parts.end(),
+                                     [&](const char* dataset) { return reader.has(dataset); });
+  if (present == 0) return std::nullopt;
+  if (present < static_cast<std::ptrdiff_t>(parts.size()))
+    input_error("'{}' holds part of a reduced model ({} of the datasets {}): rerun fsi-modes",
+                reader.path().string(), present, fmt::join(parts, ", "));
+  const auto matrix = [&](const char* dataset) {
+    return Eigen::MatrixXd(reader.read_matrix(dataset));
+  };
+  return fem::ReducedStvk(reader.read_columns(ds::basis_vectors), matrix(ds::reduced_mass),
+                          matrix(ds::reduced_linear), matrix(ds::reduced_quadratic),
+                          matrix(ds::reduced_cubic), reader.path().string());
 }
 
 fem::ElasticModel elastic_model(const io::Scene& scene) {

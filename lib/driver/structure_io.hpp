@@ -3,10 +3,12 @@
 // copied by fsi-modes (hydromodal.modes, under /mesh) so that an archived mode set carries the
 // mesh it was computed on.
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "fem/material.hpp"
+#include "fem/reduced_stvk.hpp"
 #include "io/artefact.hpp"
 #include "io/scene.hpp"
 #include "mesh/boundary.hpp"
@@ -32,6 +34,11 @@ MeshArtefact read_structure_mesh(const io::ArtefactReader& reader);
 /// The mode set of a hydromodal.modes artefact, as far as modal superposition needs it: dim,
 /// λ, ω, f, ζ and the shapes as full DOF vectors (n_nodes·dim × n_modes, DOF = dim·node + c).
 modal::ModeSet read_mode_set(const io::ArtefactReader& reader);
+
+/// The reduced model of a mode set computed with modes.derivatives (hydromodal.modes version 2:
+/// /basis/vectors and /reduced/*), the tensors of structure.model = "nonlinear_modal"; nullopt
+/// when the set has none. InputError naming the file when its parts do not fit each other.
+std::optional<fem::ReducedStvk> read_reduced_model(const io::ArtefactReader& reader);
 
 /// The linear material of the scene's [structure] (E, ν, ρ; 2-D section and thickness).
 fem::ElasticModel elastic_model(const io::Scene& scene);

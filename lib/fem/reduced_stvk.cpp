@@ -136,13 +136,38 @@ ReducedStvk::ReducedStvk(const HyperelasticBody& body, Eigen::MatrixXd basis,
   if (basis_.rows() != body.dof_count() || basis_.cols() < 1)
     input_error("{}: a basis of {} × {} is invalid for a body of {} DOFs", context, basis_.rows(),
                 basis_.cols(), body.dof_count());
+  list_triples();
+  coefficients_from(body.dim() == 2 ? gram_matrix<2>(body, basis_) : gram_matrix<3>(body, basis_));
+  mass_ = basis_.transpose() * (body.mass() * basis_);
+  setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
+}
+
+ReducedStvk::ReducedStvk(Eigen::MatrixXd basis, Eigen::MatrixXd mass, Eigen::MatrixXd linear,
+                         Eigen::MatrixXd quadratic, Eigen::MatrixXd cubic, std::string_view context)
+    : basis_(std::move(basis)),
+      mass_(std::move(mass)),
+      k1_(std::move(linear)),
+      k2_(std::move(quadratic)),
+      k3_(std::move(cubic)) {
+  const Eigen::Index r = basis_.cols();
+  const auto fits = [r](const Eigen::MatrixXd& m, Eigen::Index columns) {
+    return m.rows() == r && m.cols() == columns;
+  };
+  if (r < 1 || !fits(mass_, r) || !fits(k1_, r) || !fits(k2_, r * (r + 1) / 2) ||
+      !fits(k3_, r * (r + 1) * (r + 2) / 6))
+    input_error(
+        "{}: reduced tensors of sizes M_r {} × {}, K1 {} × {}, K2 {} × {}, K3 {} × {} do not fit "
+        "a basis of {} vectors (r × r, r × r(r+1)/2, r × r(r+1)(r+2)/6)",
+        context, mass_.rows(), mass_.cols(), k1_.rows(), k1_.cols(), k2_.rows(), k2_.cols(),
+        k3_.rows(), k3_.cols(), r);
+  list_triples();
+}
+
+void ReducedStvk::list_triples() {
   const int r = static_cast<int>(basis_.cols());
   for (int j = 0; j < r; ++j)
     for (int k = j; k < r; ++k)
       for (int l = k; l < r; ++l) triples_.push_back({j, k, l});
-  coefficients_from(body.dim() == 2 ? gram_matrix<2>(body, basis_) : gram_matrix<3>(body, basis_));
-  mass_ = basis_.transpose() * (body.mass() * basis_);
-  setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 }
 
 Eigen::Index ReducedStvk::pair_index(Eigen::Index j, Eigen::Index k) const {

@@ -50,6 +50,11 @@ class ReducedStvk {
   /// body). InputError naming `context` for a neo-Hookean body, a basis of the wrong height or
   /// none.
   ReducedStvk(const HyperelasticBody& body, Eigen::MatrixXd basis, std::string_view context);
+  /// A model from stored tensors (fsi-modes' modes.h5): V (n_dofs × r), M_r, K1 (r × r), K2
+  /// (r × r(r+1)/2), K3 (r × r(r+1)(r+2)/6) as the accessors below return them. InputError
+  /// naming `context` when their sizes do not fit one r.
+  ReducedStvk(Eigen::MatrixXd basis, Eigen::MatrixXd mass, Eigen::MatrixXd linear,
+              Eigen::MatrixXd quadratic, Eigen::MatrixXd cubic, std::string_view context);
 
   Eigen::Index size() const { return basis_.cols(); }
   const Eigen::MatrixXd& basis() const { return basis_; }          ///< V
@@ -72,12 +77,14 @@ class ReducedStvk {
   /// u = V q [m], full DOFs.
   Eigen::VectorXd displacement(const Eigen::VectorXd& q) const { return basis_ * q; }
 
-  double setup_seconds() const { return setup_seconds_; }  ///< wall time of the tensors [s]
+  /// Wall time of the tensors [s] (0 for tensors given).
+  double setup_seconds() const { return setup_seconds_; }
 
  private:
   Eigen::VectorXd quadratic_monomials(const Eigen::VectorXd& q) const;
   Eigen::VectorXd cubic_monomials(const Eigen::VectorXd& q) const;
   void coefficients_from(const Eigen::MatrixXd& gram);
+  void list_triples();
 
   Eigen::MatrixXd basis_, mass_, k1_, k2_, k3_;
   std::vector<std::array<int, 3>> triples_;

@@ -426,11 +426,11 @@ ArtefactReader::ArtefactReader(const std::filesystem::path& path, const SchemaSp
     input_error("'{}' is a '{}' artefact, but a '{}' artefact is expected here (written by {})",
                 path.string(), provenance_.schema, expected.name,
                 provenance_.stage.empty() ? "an unknown stage" : provenance_.stage);
-  if (provenance_.schema_version != expected.version)
+  if (!expected.reads(provenance_.schema_version))
     input_error(
-        "'{}' has {} schema version {}, but this tool reads version {}; rerun the stage "
+        "'{}' has {} schema version {}, but this tool reads {}; rerun the stage "
         "'{}' to regenerate it",
-        path.string(), expected.name, provenance_.schema_version, expected.version,
+        path.string(), expected.name, provenance_.schema_version, expected.readable_versions(),
         provenance_.stage);
   extents_ = validate_datasets(file_->get(), expected, path);
 }
@@ -570,9 +570,9 @@ ArtefactSummary summarise(const std::filesystem::path& path, std::size_t max_val
   ArtefactSummary summary;
   summary.provenance = read_provenance(file->get(), path);
   if (const SchemaSpec* spec = find_schema(summary.provenance.schema)) {
-    if (summary.provenance.schema_version != spec->version)
-      input_error("'{}' has {} schema version {}, this tool knows version {}", path.string(),
-                  spec->name, summary.provenance.schema_version, spec->version);
+    if (!spec->reads(summary.provenance.schema_version))
+      input_error("'{}' has {} schema version {}, this tool knows {}", path.string(), spec->name,
+                  summary.provenance.schema_version, spec->readable_versions());
     validate_datasets(file->get(), *spec, path);
   }
   for (const auto& name : attribute_names(file->get())) {

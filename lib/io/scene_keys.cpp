@@ -397,20 +397,27 @@ const std::vector<KeyDecl>& scene_keys() {
               "the [[load]]s at t = 0 (structure-only runs) or the fluid's load at rest "
               "(coupled runs: a tank filled with the structure in place)",
               simulate_stage),
-      text("structure.model", "\"linear_modal\"", {"linear_modal", "nonlinear_fe"},
+      text("structure.model", "\"linear_modal\"",
+           {"linear_modal", "nonlinear_fe", "nonlinear_modal"},
            "coupled runs: the structure's model. linear_modal: the mapped modes integrated "
            "exactly (CFPI), fast, valid while structure_stretch stays below ~5 % (linear modes "
            "cannot rotate: a bending gate stretches instead of lifting its tip); nonlinear_fe: "
            "the total-Lagrangian finite-element body (tri6/tet10, structure.material.law), "
            "exact for large rotations, one Newton solve per coupling step and its predictor "
-           "(fsi-simulate needs --modes modes.h5 for its interface modes)",
+           "(fsi-simulate needs --modes modes.h5 for its interface modes); nonlinear_modal: "
+           "the reduced Saint Venant-Kirchhoff model on the modes and their static modal "
+           "derivatives (needs modes.derivatives = true; the mapped basis is the coupling's "
+           "interface, so the added mass costs one pressure solve per basis vector), exact "
+           "within its basis, which represents moderate rotations (the error grows with the "
+           "rotation and shrinks with more modes)",
            simulate_stage),
       text("structure.material.law", "\"saint_venant_kirchhoff\"",
            {"saint_venant_kirchhoff", "neo_hookean"},
            "nonlinear models: the hyperelastic law with the Lamé constants of E and nu. "
            "saint_venant_kirchhoff: exact for small strain with large rotation; neo_hookean "
            "(compressible): physical in compression, for rubber (nu < 0.5 strictly; <= 0.49 "
-           "advised)",
+           "advised), nonlinear_fe only (nonlinear_modal's cubic reduced force is exact for "
+           "saint_venant_kirchhoff alone)",
            simulate_stage),
       text("structure.time_scheme", "\"energy_conserving\"",
            {"energy_conserving", "generalized_alpha"},
@@ -430,6 +437,11 @@ const std::vector<KeyDecl>& scene_keys() {
              "nonlinear models: Newton's residual relative to the largest force term of the "
              "step's equations",
              simulate_stage, true),
+      integer("structure.newton_max_iterations", "30", 1, 1000,
+              "nonlinear models: Newton iterations of a step before it is retried in halves (up "
+              "to 6 times); a step that still fails ends the run (exit 3) with the last good "
+              "snapshot",
+              simulate_stage),
       text("structure.free_translation", "\"\"", {"", "x", "y", "z"},
            "coupled runs: the axis along which the body moves freely under gravity and the "
            "fluid's force (a wedge dropped on a guided rig); needs a free-free mode set "
@@ -474,6 +486,17 @@ const std::vector<KeyDecl>& scene_keys() {
              "relative convergence tolerance of the Lanczos iteration", modes_stage, true),
       integer("modes.max_restarts", "1000", 1, 1000000,
               "implicit restarts of the Lanczos iteration before it gives up (exit code 3)",
+              modes_stage),
+      boolean("modes.derivatives", "false",
+              "also compute the reduced model of structure.model = \"nonlinear_modal\": the "
+              "static modal derivatives of the modes (a clamped body), the basis of modes and "
+              "derivatives and its Saint Venant-Kirchhoff tensors (the Lamé constants of E and "
+              "nu), stored in modes.h5 (/basis, /reduced); the basis has n + k(k+1)/2 vectors "
+              "for n modes and k = derivative_modes",
+              modes_stage),
+      integer("modes.derivative_modes", "0", 0, 100000,
+              "with derivatives: the derivatives of the lowest this many modes (0: of every "
+              "mode); fewer keep the basis and the coupling's added-mass solves small",
               modes_stage),
 
       // [report], [[report.compare]]

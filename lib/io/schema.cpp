@@ -38,6 +38,16 @@ const DatasetSpec* SchemaSpec::find(std::string_view dataset_path) const {
   return nullptr;
 }
 
+bool SchemaSpec::reads(int file_version) const {
+  return file_version <= version &&
+         file_version >= (oldest_readable > 0 ? oldest_readable : version);
+}
+
+std::string SchemaSpec::readable_versions() const {
+  if (oldest_readable <= 0 || oldest_readable == version) return fmt::format("version {}", version);
+  return fmt::format("versions {} to {}", oldest_readable, version);
+}
+
 static DatasetSpec optional(DatasetSpec spec) {
   spec.required = false;
   return spec;
@@ -114,9 +124,18 @@ const SchemaSpec& mesh_schema() {
 const SchemaSpec& modes_schema() {
   static const SchemaSpec spec{
       schema::modes,
-      1,
+      2,
       "Natural frequencies and mass-normalised mode shapes (Phi^T M Phi = I) of one structure, "
-      "with invariant checks and participation factors. Written by fsi-modes.",
+      "with invariant checks and participation factors. Written by fsi-modes. With "
+      "modes.derivatives (version 2) also the reduced basis V = [Phi, Theta] of the nonlinear "
+      "modal model (structure.model = \"nonlinear_modal\") and its Saint Venant-Kirchhoff "
+      "force, exactly cubic in the reduced coordinates q (u = V q): f_r,i(q) = sum_j K1_ij q_j + "
+      "sum_{j<=k} K2_i,jk q_j q_k + sum_{j<=k<=l} K3_i,jkl q_j q_k q_l, the pairs (j, k) and "
+      "triples (j, k, l) in lexicographic order ((0,0), (0,1), ..., (0,r-1), (1,1), ...), each "
+      "coefficient the Taylor coefficient of its monomial (the derivative of f_r,i by q_j, q_k "
+      "(, q_l) divided by 2 when two indices are equal, by 6 when three are); the strain energy "
+      "is W = q.f1/2 + q.f2/3 + q.f3/4 of the parts of degree 1, 2, 3. Root attributes then: "
+      "basis_modes, basis_derivatives, basis_dropped, derivatives_seconds, tensor_seconds.",
       {
           {ds::eigenvalues, DType::f64, {"n_modes"}, "rad^2/s^2", "eigenvalues lambda = omega^2"},
           {ds::omega, DType::f64, {"n_modes"}, "rad/s", "angular natural frequencies"},
@@ -180,18 +199,79 @@ const SchemaSpec& modes_schema() {
            {"n_surface_vertices"},
            "",
            "volume node of each surface vertex"},
-      }};
+          optional({ds::basis_vectors,
+                    DType::f64,
+                    {"n_basis", "n_nodes", "dim"},
+                    "1/sqrt(kg)",
+                    "the reduced basis V on every node: the modes, then the static modal "
+                    "derivatives theta_ij = -K0^-1 d2f[phi_i, phi_j] (i <= j), M-orthonormalised "
+                    "(V^T M V = I, Gram-Schmidt in that order, dependent candidates dropped); "
+                    "zero at clamped nodes"}),
+          optional({ds::basis_surface_vectors,
+                    DType::f64,
+                    {"n_basis", "n_surface_vertices", "dim"},
+                    "1/sqrt(kg)",
+                    "the reduced basis on the linear boundary surface vertices"}),
+          optional({ds::basis_origin,
+                    DType::i64,
+                    {"n_basis", "2"},
+                    "",
+                    "what each basis vector came from: (i, -1) mode i, (i, j) the derivative "
+                    "theta_ij (0-based mode indices)"}),
+          optional({ds::basis_omega,
+                    DType::f64,
+                    {"n_basis"},
+                    "rad/s",
+                    "sqrt(K1_ii / M_r,ii) of each basis vector: omega of a mode, the Rayleigh "
+                    "quotient's frequency of a derivative"}),
+          optional({ds::basis_participation_translation,
+                    DType::f64,
+                    {"n_basis", "dim"},
+                    "sqrt(kg)",
+                    "V^T M T for unit translations along x, y (, z)"}),
+          optional({ds::basis_participation_rotation,
+                    DType::f64,
+                    {"n_basis", "n_rotations"},
+                    "sqrt(kg)*m",
+                    "V^T M R for unit rotations about the reference point"}),
+          optional({ds::reduced_mass,
+                    DType::f64,
+                    {"n_basis", "n_basis"},
+                    "1",
+                    "M_r = V^T M V (the identity to round-off)"}),
+          optional({ds::reduced_linear,
+                    DType::f64,
+                    {"n_basis", "n_basis"},
+                    "1/s^2",
+                    "K1 = V^T K0 V: the linear part of f_r (the Lame constants of E and nu, "
+                    "Saint Venant-Kirchhoff)"}),
+          optional({ds::reduced_quadratic,
+                    DType::f64,
+                    {"n_basis", "n_pairs"},
+                    "1/(s^2*m*sqrt(kg))",
+                    "K2: column (j, k), j <= k, lexicographic, r(r+1)/2 of them: the coefficient "
+                    "of q_j q_k in f_r"}),
+          optional({ds::reduced_cubic,
+                    DType::f64,
+                    {"n_basis", "n_triples"},
+                    "1/(s^2*m^2*kg)",
+                    "K3: column (j, k, l), j <= k <= l, lexicographic, r(r+1)(r+2)/6 of them: the "
+                    "coefficient of q_j q_k q_l in f_r"}),
+      },
+      1};
   return spec;
 }
 
 const SchemaSpec& mapped_modes_schema() {
   static const SchemaSpec spec{
       schema::mapped_modes,
-      1,
+      2,
       "Mode shapes interpolated from the structure's boundary surface onto the surface the fluid "
       "sees (RBF: Wendland C2 + linear polynomial; consistent for shapes, its transpose "
-      "conservative "
-      "for forces), with the modal data fsi-simulate needs. Written by fsi-map.",
+      "conservative for forces), with the modal data fsi-simulate needs. Written by fsi-map. A "
+      "mode set with a reduced basis (modes.derivatives, version 2) has its basis mapped by the "
+      "same interpolation, the modes' shapes unchanged: the interface of structure.model = "
+      "\"nonlinear_modal\".",
       {
           {ds::target_vertices, DType::f64, {"n_target", "dim"}, "m", "target surface vertices"},
           {ds::target_cells,
@@ -223,7 +303,38 @@ const SchemaSpec& mapped_modes_schema() {
            "1",
            "leave-some-out estimate of the interpolation error of each mode: max |error| / max "
            "|mode|"},
-      }};
+          optional({ds::mapped_basis,
+                    DType::f64,
+                    {"n_basis", "n_target", "dim"},
+                    "1/sqrt(kg)",
+                    "the reduced basis V (modes.h5 /basis) at the target vertices"}),
+          optional({ds::basis_origin,
+                    DType::i64,
+                    {"n_basis", "2"},
+                    "",
+                    "(i, -1) mode i, (i, j) the derivative theta_ij (as in modes.h5)"}),
+          optional({ds::basis_omega,
+                    DType::f64,
+                    {"n_basis"},
+                    "rad/s",
+                    "sqrt(K1_ii / M_r,ii) of each basis vector (as in modes.h5)"}),
+          optional({ds::basis_participation_translation,
+                    DType::f64,
+                    {"n_basis", "dim"},
+                    "sqrt(kg)",
+                    "V^T M T (the body's weight and a moving tank's base excitation)"}),
+          optional({ds::basis_participation_rotation,
+                    DType::f64,
+                    {"n_basis", "n_rotations"},
+                    "sqrt(kg)*m",
+                    "V^T M R about the reference point of fsi-modes"}),
+          optional({ds::mapped_basis_field_error,
+                    DType::f64,
+                    {"n_basis"},
+                    "1",
+                    "leave-some-out estimate of the interpolation error of each basis vector"}),
+      },
+      1};
   return spec;
 }
 
@@ -315,7 +426,9 @@ const SchemaSpec& results_schema() {
                     DType::f64,
                     {"n_modal_rows", "n_modes"},
                     "m*sqrt(kg)",
-                    "modal coordinates y (mass-normalised modes)"}),
+                    "modal coordinates y (mass-normalised modes): the structure model's interface "
+                    "coordinates (nonlinear_fe: Phi^T M u; nonlinear_modal: the coordinates q of "
+                    "its basis V, n_modes = n_basis)"}),
           optional({ds::modal_velocities,
                     DType::f64,
                     {"n_modal_rows", "n_modes"},
@@ -510,9 +623,12 @@ std::string schema_reference_markdown() {
       "`description` attributes.\n";
   for (const SchemaSpec* spec : all_schemas()) {
     out += fmt::format(
-        "\n## `{}` version {}\n\n{}\n\n| dataset | type | shape | unit | meaning |\n"
+        "\n## `{}` version {}\n\n{}{}\n\n| dataset | type | shape | unit | meaning |\n"
         "|---|---|---|---|---|\n",
-        spec->name, spec->version, spec->doc);
+        spec->name, spec->version, spec->doc,
+        spec->reads(spec->version - 1)
+            ? fmt::format(" (Readers accept {}.)", spec->readable_versions())
+            : std::string());
     for (const auto& d : spec->datasets) {
       std::string shape;
       for (const auto& s : d.shape) shape += (shape.empty() ? "" : " × ") + s;

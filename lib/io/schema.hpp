@@ -26,11 +26,18 @@ struct DatasetSpec {
 
 struct SchemaSpec {
   std::string name;  ///< e.g. "hydromodal.modes"
-  int version = 1;
+  int version = 1;   ///< what the writer stamps
   std::string doc;
   std::vector<DatasetSpec> datasets;
+  /// The oldest version a reader still accepts (0: `version` only). Versions in between may lack
+  /// datasets added since (declared optional), never change the meaning of one.
+  int oldest_readable = 0;
 
   const DatasetSpec* find(std::string_view dataset_path) const;
+  /// Whether a file of `file_version` is read by this schema.
+  bool reads(int file_version) const;
+  /// "version 2" or "versions 1 to 2", for messages.
+  std::string readable_versions() const;
 };
 
 /// Root attribute names every artefact carries (provenance).
@@ -91,11 +98,27 @@ inline constexpr const char* modes_cells_vtk = "/mesh/cells_vtk";
 inline constexpr const char* modes_surface_vertices = "/mesh/surface/vertices";
 inline constexpr const char* modes_surface_cells = "/mesh/surface/cells";
 inline constexpr const char* modes_surface_node = "/mesh/surface/volume_node";
+// hydromodal.modes (version 2, with modes.derivatives): the reduced basis V = [Φ, Θ] of the
+// nonlinear modal model and its Saint Venant–Kirchhoff tensors (fem/reduced_stvk.hpp).
+inline constexpr const char* basis_vectors = "/basis/vectors";
+inline constexpr const char* basis_surface_vectors = "/basis/surface_vectors";
+inline constexpr const char* basis_origin = "/basis/origin";
+inline constexpr const char* basis_omega = "/basis/omega";
+inline constexpr const char* basis_participation_translation = "/basis/participation_translation";
+inline constexpr const char* basis_participation_rotation = "/basis/participation_rotation";
+inline constexpr const char* reduced_mass = "/reduced/mass";
+inline constexpr const char* reduced_linear = "/reduced/linear";
+inline constexpr const char* reduced_quadratic = "/reduced/quadratic";
+inline constexpr const char* reduced_cubic = "/reduced/cubic";
 // hydromodal.mapped_modes
 inline constexpr const char* target_vertices = "/target/vertices";
 inline constexpr const char* target_cells = "/target/cells";
 inline constexpr const char* mapped_shapes = "/modes/shapes";  // on the target vertices
 inline constexpr const char* mapping_field_error = "/quality/field_error";
+// hydromodal.mapped_modes (version 2): the reduced basis on the target vertices (besides
+// basis_origin, basis_omega and the basis' participation factors, spelled as in modes.h5).
+inline constexpr const char* mapped_basis = "/basis/shapes";
+inline constexpr const char* mapped_basis_field_error = "/basis/field_error";
 // hydromodal.results (groups: /probes, /monitors, /run; issue 7 adds /modal, /bodies)
 inline constexpr const char* probe_time = "/probes/time";
 inline constexpr const char* probe_values = "/probes/values";
@@ -141,6 +164,12 @@ inline constexpr const char* body_velocity = "/body/velocity";
 namespace modes_attr {
 inline constexpr const char* factorisation_seconds = "factorisation_seconds";  ///< [s]
 inline constexpr const char* lanczos_seconds = "lanczos_seconds";              ///< [s]
+/// With modes.derivatives: the reduced basis' make-up and cost.
+inline constexpr const char* basis_modes = "basis_modes";              ///< linear modes in V
+inline constexpr const char* basis_derivatives = "basis_derivatives";  ///< derivatives in V
+inline constexpr const char* basis_dropped = "basis_dropped";  ///< candidates dropped (dependent)
+inline constexpr const char* derivatives_seconds = "derivatives_seconds";  ///< Θ and V [s]
+inline constexpr const char* tensor_seconds = "tensor_seconds";            ///< K1, K2, K3, M_r [s]
 }  // namespace modes_attr
 
 /// Root attributes of hydromodal.results (besides the provenance ones).
@@ -158,8 +187,8 @@ inline constexpr const char* phase_names = "phase_names";        ///< /run/phase
 inline constexpr const char* dx = "dx";                          ///< [m]
 inline constexpr const char* support = "support";                ///< h [m]
 inline constexpr const char* coupling_scheme = "coupling_scheme";  ///< explicit | strong
-/// The structure model (structure.model: linear_modal | nonlinear_fe; its law and scheme are
-/// in the parameters).
+/// The structure model (structure.model: linear_modal | nonlinear_fe | nonlinear_modal; its law
+/// and scheme are in the parameters).
 inline constexpr const char* structure_model = "structure_model";
 /// The energy columns of /monitors/structure_energy, comma-separated.
 inline constexpr const char* energy_columns = "energy_columns";

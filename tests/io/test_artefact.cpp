@@ -109,6 +109,26 @@ TEST(Artefact, WrongSchemaNameOrVersionIsRefusedNamingFileAndReason) {
   EXPECT_NE(wrong_version.find("reads version 2"), std::string::npos) << wrong_version;
 }
 
+// A schema that added optional datasets reads the files of its older versions down to
+// oldest_readable, and no older ones.
+TEST(Artefact, OlderVersionsWithinTheReadableRangeAreRead) {
+  const fs::path dir = fresh_dir("versions");
+  write_valid(dir / "a.h5", test_schema(1));
+  SchemaSpec newer = test_schema(2);
+  newer.oldest_readable = 1;
+  newer.datasets.push_back({"/values/extra", DType::f64, {"n"}, "m", "added in 2", false});
+  const ArtefactReader r(dir / "a.h5", newer);
+  EXPECT_EQ(r.provenance().schema_version, 1);
+  EXPECT_FALSE(r.has("/values/extra"));
+  EXPECT_EQ(r.read_matrix("/values/x")(2, 1), 5.0);
+
+  SchemaSpec newest = test_schema(3);
+  newest.oldest_readable = 2;
+  const std::string refused = message_of([&] { ArtefactReader(dir / "a.h5", newest); });
+  EXPECT_NE(refused.find("schema version 1"), std::string::npos) << refused;
+  EXPECT_NE(refused.find("reads versions 2 to 3"), std::string::npos) << refused;
+}
+
 TEST(Artefact, MissingRequiredDatasetOrInconsistentShapeIsRefused) {
   const fs::path dir = fresh_dir("shape");
   SchemaSpec loose = test_schema();
