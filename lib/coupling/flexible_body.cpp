@@ -301,13 +301,33 @@ Eigen::VectorXd FlexibleBody<D>::answer_to(const Eigen::VectorXd& generalised) c
   return answer_.slope * generalised + answer_.offset;
 }
 
+namespace {
+
+/// Runs f and adds its wall-clock time to `seconds`.
+template <class F>
+decltype(auto) timed(double& seconds, F&& f) {
+  const auto start = std::chrono::steady_clock::now();
+  struct Add {
+    double& seconds;
+    std::chrono::steady_clock::time_point start;
+    ~Add() {
+      seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+  } add{seconds, start};
+  return f();
+}
+
+}  // namespace
+
 template <int D>
 void FlexibleBody<D>::predict(ldd::WallMesh<D>& wall, double dt) {
   step_dt_ = dt;
-  answer_ = model_->predict(dt);
+  model_seconds_ = 0.0;
+  answer_ = timed(model_seconds_, [&] { return model_->predict(dt); });
   // The predictor F_p = Fⁿ.
   a_step_ = answer_to(F());
-  place(wall, model_->wall_in_step(a_step_), model_->time() + dt);
+  place(wall, timed(model_seconds_, [&] { return model_->wall_in_step(a_step_); }),
+        model_->time() + dt);
   iterations_ = 0;
   if (added_mass_.size() > 0) jacobian_ = -added_mass_;
 }
@@ -346,13 +366,14 @@ double FlexibleBody<D>::iterate(ldd::WallMesh<D>& wall, const BodyLoad& load) {
   last_residual_ = residual.norm();
   ++iterations_;
   a_step_ += delta;
-  place(wall, model_->wall_in_step(a_step_), model_->time() + step_dt_);
+  place(wall, timed(model_seconds_, [&] { return model_->wall_in_step(a_step_); }),
+        model_->time() + step_dt_);
   return relative;
 }
 
 template <int D>
 void FlexibleBody<D>::correct(const BodyLoad& measured) {
-  model_->correct(measured);
+  timed(model_seconds_, [&] { model_->correct(measured); });
 }
 
 template <int D>
@@ -423,6 +444,7 @@ ldd::StepMonitor coupled_step(ldd::FlowSolver<D>& flow, std::span<FlexibleBody<D
     coupling[b].peak_pressure = bodies[b].peak_pressure(flow);
     coupling[b].solver_iterations = bodies[b].model().solver_iterations();
     coupling[b].energy = bodies[b].model().energy();
+    coupling[b].structure_seconds = bodies[b].model_seconds();
   }
   own += since(t);
   for (auto& c : coupling) {

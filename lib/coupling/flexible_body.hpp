@@ -102,6 +102,7 @@ struct CouplingMonitor {
   /// sub-iterations count as the flow's (StepMonitor::seconds), the added-mass solves here.
   double seconds = 0.0;
   double added_mass_seconds = 0.0;  ///< the part of `seconds` spent measuring M̂ [s]
+  double structure_seconds = 0.0;   ///< the part of `seconds` spent in the structure model [s]
 };
 
 /// What a flexible body carries between steps (a checkpoint).
@@ -206,6 +207,9 @@ class FlexibleBody {
   /// the next solve (positions unchanged) and returns the interface residual.
   double iterate(ldd::WallMesh<D>& wall, const BodyLoad& measured);
   void correct(const BodyLoad& measured);
+  /// Wall-clock time spent in the structure model in the present step so far (its predictor,
+  /// the wall it places for each sub-iteration, its corrector) [s].
+  double model_seconds() const { return model_seconds_; }
 
  private:
   void check_interface(const ldd::WallMesh<D>& wall_mesh);
@@ -236,6 +240,7 @@ class FlexibleBody {
   Eigen::VectorXd last_a_, last_F_;
   double last_residual_ = 0.0;
   int iterations_ = 0;
+  double model_seconds_ = 0.0;
 };
 
 /// One coupled step of the flow and its flexible bodies (the file comment). The rigid walls in

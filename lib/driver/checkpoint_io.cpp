@@ -68,8 +68,10 @@ ldd::StepMonitor unpack_monitor(const double* r) {
   return m;
 }
 
-constexpr int coupling_fields = 15;
-/// What checkpoints wrote before the structure model's iterations and energy were monitored.
+constexpr int coupling_fields = 16;
+/// What checkpoints wrote before the structure model's time was monitored, and before its
+/// iterations and energy were.
+constexpr int coupling_fields_without_structure_seconds = 15;
 constexpr int coupling_fields_without_energy = 9;
 
 void pack(const coupling::CouplingMonitor& c, double* r) {
@@ -88,6 +90,7 @@ void pack(const coupling::CouplingMonitor& c, double* r) {
   r[12] = c.energy.external_work;
   r[13] = c.energy.damping;
   r[14] = c.energy.numerical_dissipation;
+  r[15] = c.structure_seconds;
 }
 
 coupling::CouplingMonitor unpack_coupling(const double* r, int fields) {
@@ -101,9 +104,11 @@ coupling::CouplingMonitor unpack_coupling(const double* r, int fields) {
   c.added_mass_seconds = r[6];
   c.deformation = r[7];
   c.peak_pressure = r[8];
-  if (fields < coupling_fields) return c;
+  if (fields < coupling_fields_without_structure_seconds) return c;
   c.solver_iterations = static_cast<int>(r[9]);
   c.energy = {r[10], r[11], r[12], r[13], r[14]};
+  if (fields < coupling_fields) return c;
+  c.structure_seconds = r[15];
   return c;
 }
 
@@ -380,14 +385,16 @@ coupling::RunResult read_run(const io::ArtefactReader& r, std::size_t bodies) {
   if (r.has("/run/coupling")) {
     const MatrixRM c = r.read_matrix("/run/coupling");
     const auto n = static_cast<Eigen::Index>(bodies);
-    const int fields = c.cols() == coupling_fields_without_energy * n
-                           ? coupling_fields_without_energy
-                           : coupling_fields;
-    if (c.cols() != fields * n)
+    int fields = 0;
+    for (const int known : {coupling_fields, coupling_fields_without_structure_seconds,
+                            coupling_fields_without_energy})
+      if (c.cols() == known * n) fields = known;
+    if (fields == 0)
       input_error(
-          "{}: /run/coupling has {} columns; this version reads {} (or {}) per body ({} "
+          "{}: /run/coupling has {} columns; this version reads {}, {} or {} per body ({} "
           "bodies): the checkpoint is from another version, rerun without --restart",
-          r.path().string(), c.cols(), coupling_fields, coupling_fields_without_energy, bodies);
+          r.path().string(), c.cols(), coupling_fields, coupling_fields_without_structure_seconds,
+          coupling_fields_without_energy, bodies);
     for (Eigen::Index k = 0; k < c.rows(); ++k) {
       run.coupling.emplace_back();
       for (std::size_t b = 0; b < bodies; ++b)

@@ -58,6 +58,10 @@ struct RunData {
   Curve dt, ppe_iterations, volume_drift;
   std::vector<double> modal_time;
   io::MatrixRM modal;  ///< n_rows × n_modes (empty: no structure)
+  /// A coupled run's structure monitors (empty when the run did not record them).
+  std::vector<double> monitor_time;
+  io::MatrixRM structure_energy;  ///< n_steps × 5 [J]: kinetic, strain, work, damping, numerical
+  Curve structure_stretch, coupling_iterations, structure_solver_iterations;
 };
 
 /// The probe columns of a results artefact (none when it has no probes).
@@ -86,6 +90,15 @@ RunData read_run(const std::filesystem::path& results) {
     d.dt = {t, r.read_values(ds::monitor_dt)};
     d.ppe_iterations = {t, r.read_values(ds::monitor_ppe_iterations)};
     d.volume_drift = {t, r.read_values(ds::monitor_volume_drift)};
+    d.monitor_time = t;
+    if (r.has(ds::monitor_structure_energy))
+      d.structure_energy = r.read_matrix(ds::monitor_structure_energy);
+    if (r.has(ds::monitor_structure_stretch))
+      d.structure_stretch = {t, r.read_values(ds::monitor_structure_stretch)};
+    if (r.has(ds::monitor_coupling_iterations))
+      d.coupling_iterations = {t, r.read_values(ds::monitor_coupling_iterations)};
+    if (r.has(ds::monitor_structure_solver_iterations))
+      d.structure_solver_iterations = {t, r.read_values(ds::monitor_structure_solver_iterations)};
   }
   if (r.has(ds::modal_time)) {
     d.modal_time = r.read_values(ds::modal_time);
@@ -154,6 +167,58 @@ nlohmann::ordered_json metrics_json(const std::vector<Comparison>& cs,
   return j;
 }
 
+/// structure_monitors.png: what a coupled run recorded of its structure — the energy balance
+/// (kinetic, strain, the fluid's and gravity's work, structural damping, numerical dissipation),
+/// the stretch, and the PPE solves and structure Newton iterations of each step.
+std::string structure_monitor_script(const std::filesystem::path& folder, const RunData& run) {
+  std::vector<std::string> panels;
+  if (run.structure_energy.rows() > 0) {
+    std::ofstream out(folder / "data" / "structure_energy.dat");
+    out.precision(17);
+    for (Eigen::Index k = 0; k < run.structure_energy.rows(); ++k) {
+      out << run.monitor_time[static_cast<std::size_t>(k)];
+      for (Eigen::Index c = 0; c < run.structure_energy.cols(); ++c)
+        out << ' ' << run.structure_energy(k, c);
+      out << '\n';
+    }
+    const char* names[] = {"kinetic", "strain", "work of the loads", "structural damping",
+                           "numerical dissipation"};
+    std::vector<std::string> series;
+    for (Eigen::Index c = 0; c < std::min<Eigen::Index>(run.structure_energy.cols(), 5); ++c)
+      series.push_back(fmt::format("'data/structure_energy.dat' using 1:{} with lines title '{}'",
+                                   c + 2, names[c]));
+    panels.push_back("set key top left\nset ylabel 'structure energy [J]'\nplot " +
+                     join(series, ", \\\n     ") + "\nunset key\n");
+  }
+  if (!run.structure_stretch.t.empty()) {
+    write_curve_dat(folder / "data" / "structure_stretch.dat", run.structure_stretch);
+    panels.push_back(
+        "set ylabel 'stretch (deformation / size)'\nplot 'data/structure_stretch.dat' using 1:2 "
+        "with lines\n");
+  }
+  std::vector<std::string> counts;
+  if (!run.coupling_iterations.t.empty()) {
+    write_curve_dat(folder / "data" / "coupling_iterations.dat", run.coupling_iterations);
+    counts.push_back("'data/coupling_iterations.dat' using 1:2 with steps title 'PPE solves'");
+  }
+  if (!run.structure_solver_iterations.t.empty()) {
+    write_curve_dat(folder / "data" / "structure_solver_iterations.dat",
+                    run.structure_solver_iterations);
+    counts.push_back(
+        "'data/structure_solver_iterations.dat' using 1:2 with steps title 'structure Newton "
+        "iterations'");
+  }
+  if (!counts.empty())
+    panels.push_back("set key top left\nset ylabel 'per step'\nplot " +
+                     join(counts, ", \\\n     ") + "\nunset key\n");
+  if (panels.empty()) return {};
+  return fmt::format(
+      "set terminal pngcairo noenhanced size 960,{} font ',10'\nset output "
+      "'structure_monitors.png'\nunset title\nunset logscale y\nset multiplot layout {},1\n"
+      "set grid\nset xlabel 't [s]'\n{}unset multiplot\n",
+      300 * panels.size(), panels.size(), join(panels, ""));
+}
+
 /// The plots' gnuplot script; data files go to data/.
 std::string plot_script(const std::filesystem::path& folder, const RunData& run,
                         const std::vector<Comparison>& cs) {
@@ -203,6 +268,7 @@ std::string plot_script(const std::filesystem::path& folder, const RunData& run,
         "set ylabel 'volume drift [%]'\nplot 'data/volume_drift.dat' using 1:($2*100) with lines\n"
         "unset multiplot\n";
   }
+  script += structure_monitor_script(folder, run);
   return script;
 }
 

@@ -350,8 +350,9 @@ const SchemaSpec& results_schema() {
       "comma-separated), dt_limit_names (the names of the /monitors/dt_limit codes in code order: "
       "cfl, viscous, acceleration, maximum, output) and phase_names (the entries of "
       "/run/phase_seconds); a coupled run also coupling_scheme, max_structure_stretch, "
-      "max_structure_deformation [m], max_structure_pressure [Pa], coupling_seconds and "
-      "added_mass_seconds, and with a body "
+      "max_structure_deformation [m], max_structure_pressure [Pa], coupling_seconds, "
+      "added_mass_seconds and structure_seconds (the structure model's part of the coupling), "
+      "and with a body "
       "in free translation body_mass [kg] and free_axis. A "
       "diverged run has status \"diverged: ...\" (so --if-stale reruns "
       "it). A flow run has the /monitors and /run datasets; a structure-only run (no fluid) the "
@@ -473,6 +474,13 @@ const SchemaSpec& results_schema() {
                     "s",
                     "coupled runs: wall-clock time of the coupling in the step (loads, CFPI, "
                     "wall updates, added-mass solves; not the PPE re-solves)"}),
+          optional({ds::monitor_structure_seconds,
+                    DType::f64,
+                    {"n_steps"},
+                    "s",
+                    "coupled runs: the part of coupling_seconds spent in the structure model "
+                    "(its predictor and corrector, e.g. the Newton solves of a nonlinear body, "
+                    "and the walls it places)"}),
           optional({ds::monitor_structure_deformation,
                     DType::f64,
                     {"n_steps"},

@@ -149,6 +149,7 @@ inline constexpr const char* monitor_coupling_iterations = "/monitors/coupling_i
 inline constexpr const char* monitor_interface_residual = "/monitors/interface_residual";
 inline constexpr const char* monitor_structure_stretch = "/monitors/structure_stretch";
 inline constexpr const char* monitor_coupling_seconds = "/monitors/coupling_seconds";
+inline constexpr const char* monitor_structure_seconds = "/monitors/structure_seconds";
 inline constexpr const char* monitor_structure_deformation = "/monitors/structure_deformation";
 inline constexpr const char* monitor_structure_peak_pressure = "/monitors/structure_peak_pressure";
 /// The structure's energy balance per step, [n_steps, 5]: kinetic, strain, work of the loads,
@@ -198,6 +199,7 @@ inline constexpr const char* max_structure_stretch = "max_structure_stretch";
 /// re-solves of the sub-iterations), and the added-mass part alone.
 inline constexpr const char* coupling_seconds = "coupling_seconds";
 inline constexpr const char* added_mass_seconds = "added_mass_seconds";
+inline constexpr const char* structure_seconds = "structure_seconds";
 /// Largest elastic displacement of the run [m] (the rigid translation of a free body excluded).
 inline constexpr const char* max_structure_deformation = "max_structure_deformation";
 /// Largest wall-node pressure on the structure over the run [Pa].
