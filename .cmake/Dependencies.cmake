@@ -82,6 +82,18 @@ if(NOT TARGET SuiteSparse::CHOLMOD)
                                                       INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}")
 endif()
 
+# UMFPACK (the same SuiteSparse package): the sparse LU of large unsymmetric Newton matrices.
+find_library(UMFPACK_LIBRARY umfpack)
+if(CHOLMOD_INCLUDE_DIR AND UMFPACK_LIBRARY)
+  set(UMFPACK_FOUND TRUE)
+endif()
+hm_require(UMFPACK_FOUND libsuitesparse-dev "SuiteSparse UMFPACK")
+if(NOT TARGET SuiteSparse::UMFPACK)
+  add_library(SuiteSparse::UMFPACK UNKNOWN IMPORTED)
+  set_target_properties(SuiteSparse::UMFPACK PROPERTIES IMPORTED_LOCATION "${UMFPACK_LIBRARY}"
+                                                      INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}")
+endif()
+
 if(HM_BUILD_TESTS)
   find_package(GTest QUIET)
   hm_require(GTest_FOUND libgtest-dev "GoogleTest")

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "core/errors.hpp"
 #include "core/log.hpp"
@@ -381,6 +382,28 @@ void reuse_archived_modes(const io::Scene& scene, const MeshArtefact& mesh,
       archived.string(), r.provenance().created_utc, r.provenance().tool_version, output.string());
 }
 
+/// Wall-clock time of consecutive phases, for the log.
+class PhaseClock {
+ public:
+  /// Ends the present phase under `name`.
+  void lap(std::string name) {
+    const auto now = std::chrono::steady_clock::now();
+    laps_.emplace_back(std::move(name), std::chrono::duration<double>(now - last_).count());
+    last_ = now;
+  }
+  /// "name 1.234, name 0.567, ...".
+  std::string text() const {
+    std::vector<std::string> parts;
+    for (const auto& [name, seconds] : laps_)
+      parts.push_back(fmt::format("{} {:.3f}", name, seconds));
+    return fmt::format("{}", fmt::join(parts, ", "));
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+  std::vector<std::pair<std::string, double>> laps_;
+};
+
 }  // namespace
 
 void validate_modes_scene(const io::Scene& scene) {
@@ -425,25 +448,33 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
   const auto seconds = [&] {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   };
+  PhaseClock phases;
   const fem::SystemMatrices system =
       fem::assemble(mesh.structure, elastic_model(scene), "structure.material");
+  phases.lap("assembly");
   const std::vector<std::string> clamped = clamped_groups(scene);
   const fem::DofMap dofs = fem::DofMap::clamp_groups(mesh.structure, clamped, "structure.clamped");
   spdlog::info("fsi-modes: assembled K and M, {} DOFs ({} free, {} clamped), {:.2f} s",
                dofs.full_count(), dofs.free_count(), dofs.clamped_count(), seconds());
   progress.update(1);
-  const modal::EigenSolution solution =
-      modal::solve_eigenproblem(dofs.reduce(system.stiffness), dofs.reduce(system.mass),
-                                mode_request(scene), eigen_options(scene));
+  const modal::EigenSolution solution = [&] {  // K and M of the free DOFs live for the solve only
+    const modal::SparseMatrix k_free = dofs.reduce(system.stiffness);
+    const modal::SparseMatrix m_free = dofs.reduce(system.mass);
+    phases.lap("constraints");
+    return modal::solve_eigenproblem(k_free, m_free, mode_request(scene), eigen_options(scene));
+  }();
+  phases.lap("eigensolver");
   spdlog::info("fsi-modes: eigensolver done ({} factorisation {:.2f} s), {:.2f} s",
                modal::to_string(solution.factorisation), solution.factorisation_seconds, seconds());
   progress.update(2);
   const modal::ModeSet modes = modal::build_mode_set(solution, system, dofs, mesh.structure,
                                                      reference_point(scene), damping(scene));
+  phases.lap("checks");
   const bool converged = solution.pairs.status == modal::EigenStatus::converged;
   std::optional<ReducedModel> reduced;
   if (derivatives && converged) {
     reduced = reduced_model(scene, mesh, dofs, system, modes);
+    phases.lap("reduced model");
     spdlog::info("fsi-modes: reduced model done, {:.2f} s", seconds());
     progress.update(3);
   }
@@ -462,6 +493,7 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
         fmt::format("{}: {} of {} modes converged ({})", modes.solver.status,
                     modes.solver.converged, modes.solver.requested, modes.solver.message));
   writer.commit();
+  phases.lap("output");
   if (!converged)
     numerical_error(
         "fsi-modes: the eigensolver did not converge ({}: {} of {} modes; {}); the converged "
@@ -469,7 +501,11 @@ void run_modes_stage(const io::Scene& scene, const std::filesystem::path& mesh_a
         modes.solver.status, modes.solver.converged, modes.solver.requested, modes.solver.message,
         target.string(), output.string());
   write_modes_xdmf(output, mesh, modes, reduced ? &*reduced : nullptr);
+  phases.lap("xdmf");
   progress.finish();
+  spdlog::info("fsi-modes: phases [s]: {} (factorisation {:.3f}, Lanczos {:.3f}); {:.2f} s in all",
+               phases.text(), modes.solver.factorisation_seconds, modes.solver.lanczos_seconds,
+               seconds());
   log_frequency_table(modes);
   if (reduced) log_reduced_model(*reduced, modes);
 }

@@ -41,26 +41,30 @@ DofMap DofMap::clamp_groups(const mesh::StructureMesh& mesh, std::span<const std
 }
 
 Eigen::SparseMatrix<double> DofMap::reduce(const Eigen::SparseMatrix<double>& full) const {
-  // Columns and rows keep their order (free_index_ is increasing), so the compressed arrays are
-  // filled directly, column by column.
-  std::vector<int> outer{0}, inner;
-  std::vector<double> values;
-  outer.reserve(static_cast<std::size_t>(free_count()) + 1);
-  inner.reserve(static_cast<std::size_t>(full.nonZeros()));
-  values.reserve(static_cast<std::size_t>(full.nonZeros()));
+  // Columns and rows keep their order (free_index_ is increasing), so the compressed arrays of
+  // the result are filled directly, column by column (no triplets, no copy).
+  if (!full.isCompressed()) return reduce(Eigen::SparseMatrix<double>(full));
+  Eigen::SparseMatrix<double> out(free_count(), free_count());
+  out.resizeNonZeros(full.nonZeros());
+  int* outer = out.outerIndexPtr();
+  int* inner = out.innerIndexPtr();
+  double* values = out.valuePtr();
+  int count = 0;
+  Eigen::Index column = 0;
+  outer[0] = 0;
   for (Eigen::Index col = 0; col < full.outerSize(); ++col) {
     if (free_index_[static_cast<std::size_t>(col)] < 0) continue;
     for (Eigen::SparseMatrix<double>::InnerIterator it(full, col); it; ++it) {
       const Eigen::Index r = free_index_[static_cast<std::size_t>(it.row())];
       if (r < 0) continue;
-      inner.push_back(static_cast<int>(r));
-      values.push_back(it.value());
+      inner[count] = static_cast<int>(r);
+      values[count] = it.value();
+      ++count;
     }
-    outer.push_back(static_cast<int>(inner.size()));
+    outer[++column] = count;
   }
-  return Eigen::Map<const Eigen::SparseMatrix<double>>(free_count(), free_count(),
-                                                       static_cast<Eigen::Index>(inner.size()),
-                                                       outer.data(), inner.data(), values.data());
+  out.resizeNonZeros(count);
+  return out;
 }
 
 Eigen::VectorXd DofMap::free_values(const Eigen::VectorXd& full) const {

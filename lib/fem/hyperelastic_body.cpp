@@ -331,6 +331,61 @@ Eigen::VectorXd HyperelasticBody::second_derivative_dim(const Eigen::VectorXd& a
   return out;
 }
 
+template <int D>
+Eigen::MatrixXd HyperelasticBody::second_derivatives_dim(const Eigen::MatrixXd& directions) const {
+  using S = Sizes<D>;
+  const typename S::VoigtMatrix c0 = tangent0_;
+  const typename S::Tensor identity = S::Tensor::Identity();
+  const auto k = static_cast<int>(directions.cols());
+  const int pairs = k * (k + 1) / 2;
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(dof_count(), pairs);
+  for (const std::vector<Index>& colour : colours_) {
+    const auto count = static_cast<std::int64_t>(colour.size());
+#pragma omp parallel for schedule(dynamic, 32)
+    for (std::int64_t c = 0; c < count; ++c) {
+      const Index cell = colour[static_cast<std::size_t>(c)];
+      std::vector<typename S::Local> local(static_cast<std::size_t>(k));
+      for (int i = 0; i < k; ++i)
+        for (int a = 0; a < S::nodes; ++a)
+          local[static_cast<std::size_t>(i)].template segment<D>(D * a) =
+              directions.col(i).template segment<D>(D * mesh_.cells(cell, a));
+      Eigen::Matrix<double, S::dofs, Eigen::Dynamic> fe =
+          Eigen::Matrix<double, S::dofs, Eigen::Dynamic>::Zero(S::dofs, pairs);
+      std::vector<typename S::Tensor> grad(static_cast<std::size_t>(k));
+      std::vector<typename S::Strain> b_nonlinear(static_cast<std::size_t>(k));
+      std::vector<typename S::Voigt> stress(static_cast<std::size_t>(k));
+      for (const QuadraturePoint& point : quadrature_[static_cast<std::size_t>(cell)]) {
+        const typename S::Grad g = point.grad;
+        const typename S::Strain b_linear = strain_operator<D>(identity, g);
+        for (std::size_t i = 0; i < grad.size(); ++i) {
+          grad[i] = displacement_gradient<D>(local[i], g);
+          b_nonlinear[i] = strain_operator<D>(grad[i], g);
+          stress[i] = c0 * strain_voigt<D>(grad[i]);  // ℂ:L(a_i)
+        }
+        // The terms of second_derivative_dim, pair by pair.
+        int column = 0;
+        for (std::size_t i = 0; i < grad.size(); ++i)
+          for (std::size_t j = i; j < grad.size(); ++j, ++column) {
+            const typename S::Voigt q_ij = strain_voigt<D>(
+                0.5 * (grad[i].transpose() * grad[j] + grad[j].transpose() * grad[i]));
+            fe.col(column).noalias() += point.weight * (b_linear.transpose() * (c0 * q_ij) +
+                                                        b_nonlinear[j].transpose() * stress[i] +
+                                                        b_nonlinear[i].transpose() * stress[j]);
+          }
+      }
+      for (int n = 0; n < S::nodes; ++n)
+        out.middleRows<D>(D * mesh_.cells(cell, n)) += fe.template middleRows<D>(D * n);
+    }
+  }
+  return out;
+}
+
+Eigen::MatrixXd HyperelasticBody::second_derivatives(const Eigen::MatrixXd& directions) const {
+  HM_ASSERT(directions.rows() == dof_count(), "{} rows for {} DOFs", directions.rows(),
+            dof_count());
+  return dim() == 2 ? second_derivatives_dim<2>(directions) : second_derivatives_dim<3>(directions);
+}
+
 Eigen::VectorXd HyperelasticBody::second_derivative(const Eigen::VectorXd& a,
                                                     const Eigen::VectorXd& b) const {
   return dim() == 2 ? second_derivative_dim<2>(a, b) : second_derivative_dim<3>(a, b);

@@ -80,6 +80,11 @@ class HyperelasticBody {
   /// a and b, d²f/du²[a, b] [N/m²] — the right-hand side of the static modal derivatives
   /// (K₀ θ_ab = −d²f[a, b]). Uses ℂ₀ whatever the law (exact for StVK).
   Eigen::VectorXd second_derivative(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
+  /// d²f/du²[a_i, a_j] of every pair i ≤ j of the columns of `directions` (n_dofs × k), as the
+  /// columns of an n_dofs × k(k+1)/2 matrix in the order (0,0), (0,1), …, (0,k−1), (1,1), …:
+  /// one pass over the mesh for all pairs (the gradients of each direction are formed once per
+  /// quadrature point, not once per pair) [N/m²].
+  Eigen::MatrixXd second_derivatives(const Eigen::MatrixXd& directions) const;
 
   const Eigen::SparseMatrix<double>& mass() const { return mass_; }                   ///< M [kg]
   const Eigen::SparseMatrix<double>& linear_stiffness() const { return stiffness_; }  ///< K₀
@@ -101,6 +106,8 @@ class HyperelasticBody {
   BodyEvaluation evaluate_dim(const Eigen::VectorXd& u, const EvaluationRequest& request) const;
   template <int D>
   Eigen::VectorXd second_derivative_dim(const Eigen::VectorXd& a, const Eigen::VectorXd& b) const;
+  template <int D>
+  Eigen::MatrixXd second_derivatives_dim(const Eigen::MatrixXd& directions) const;
 
   mesh::StructureMesh mesh_;
   HyperelasticModel model_;

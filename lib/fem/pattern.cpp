@@ -39,16 +39,21 @@ BlockPattern::BlockPattern(const mesh::StructureMesh& mesh)
     }
 }
 
-std::size_t BlockPattern::position(Index i, int r, Index j, int c) const {
+std::size_t BlockPattern::neighbour_rank(Index i, Index j) const {
   const auto& neighbours = adjacency_[static_cast<std::size_t>(j)];
-  const auto p = std::lower_bound(neighbours.begin(), neighbours.end(), i) - neighbours.begin();
-  return static_cast<std::size_t>(outer_[static_cast<std::size_t>(dim_ * j + c)] + dim_ * p + r);
+  return static_cast<std::size_t>(std::lower_bound(neighbours.begin(), neighbours.end(), i) -
+                                  neighbours.begin());
 }
 
 Eigen::SparseMatrix<double> BlockPattern::matrix(const std::vector<double>& values) const {
+  // The compressed arrays copied as they are (a Map assigned to a matrix goes entry by entry).
   const Eigen::Index n = static_cast<Eigen::Index>(outer_.size()) - 1;
-  return Eigen::Map<const Eigen::SparseMatrix<double>>(
-      n, n, static_cast<Eigen::Index>(inner_.size()), outer_.data(), inner_.data(), values.data());
+  Eigen::SparseMatrix<double> out(n, n);
+  out.resizeNonZeros(static_cast<Eigen::Index>(inner_.size()));
+  std::copy(outer_.begin(), outer_.end(), out.outerIndexPtr());
+  std::copy(inner_.begin(), inner_.end(), out.innerIndexPtr());
+  std::copy(values.begin(), values.end(), out.valuePtr());
+  return out;
 }
 
 std::vector<std::vector<Index>> colour_cells(const mesh::StructureMesh& mesh) {
@@ -72,14 +77,18 @@ std::vector<std::vector<Index>> colour_cells(const mesh::StructureMesh& mesh) {
 void scatter(const BlockPattern& pattern, const mesh::StructureMesh& mesh, Index cell,
              const Eigen::MatrixXd& local, std::vector<double>& values) {
   const int dim = mesh.dim;
-  for (Index b = 0; b < mesh.cells.cols(); ++b)
-    for (int c = 0; c < dim; ++c)
-      for (Index a = 0; a < mesh.cells.cols(); ++a)
+  for (Index b = 0; b < mesh.cells.cols(); ++b) {
+    const Index j = mesh.cells(cell, b);
+    for (Index a = 0; a < mesh.cells.cols(); ++a) {
+      const std::size_t rank = pattern.neighbour_rank(mesh.cells(cell, a), j);
+      for (int c = 0; c < dim; ++c)
         for (int r = 0; r < dim; ++r) {
           const double v = local(dim * a + r, dim * b + c);
           if (v == 0.0) continue;
-          values[pattern.position(mesh.cells(cell, a), r, mesh.cells(cell, b), c)] += v;
+          values[pattern.block_position(rank, r, j, c)] += v;
         }
+    }
+  }
 }
 
 void scatter(const mesh::StructureMesh& mesh, Index cell, const Eigen::VectorXd& local,

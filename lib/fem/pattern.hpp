@@ -22,7 +22,16 @@ class BlockPattern {
   int dim() const { return dim_; }
 
   /// Index into the value array of entry (dim·i + r, dim·j + c).
-  std::size_t position(mesh::Index i, int r, mesh::Index j, int c) const;
+  std::size_t position(mesh::Index i, int r, mesh::Index j, int c) const {
+    return block_position(neighbour_rank(i, j), r, j, c);
+  }
+  /// The rank of node i among the neighbours of node j (one search for a whole dim × dim block).
+  std::size_t neighbour_rank(mesh::Index i, mesh::Index j) const;
+  /// Index of entry (dim·i + r, dim·j + c) for i of neighbour_rank(i, j) = `rank`.
+  std::size_t block_position(std::size_t rank, int r, mesh::Index j, int c) const {
+    return static_cast<std::size_t>(outer_[static_cast<std::size_t>(dim_ * j + c)]) + dim_ * rank +
+           static_cast<std::size_t>(r);
+  }
 
   /// The matrix with `values` (nonzeros() of them, in pattern order) as entries.
   Eigen::SparseMatrix<double> matrix(const std::vector<double>& values) const;

@@ -100,13 +100,9 @@ class MOrthonormalSet {
 Eigen::MatrixXd modal_derivatives(const HyperelasticBody& body, const DofMap& dofs,
                                   const Cholesky& llt, const Eigen::MatrixXd& modes, int k,
                                   std::vector<std::array<int, 2>>& pairs) {
-  Eigen::MatrixXd rhs(dofs.free_count(), k * (k + 1) / 2);
+  const Eigen::MatrixXd rhs = -dofs.reduce(body.second_derivatives(modes.leftCols(k)));
   for (int i = 0; i < k; ++i)
-    for (int j = i; j < k; ++j) {
-      rhs.col(static_cast<Eigen::Index>(pairs.size())) =
-          -dofs.free_values(body.second_derivative(modes.col(i), modes.col(j)));
-      pairs.push_back({i, j});
-    }
+    for (int j = i; j < k; ++j) pairs.push_back({i, j});
   return llt.solve(rhs);
 }
 

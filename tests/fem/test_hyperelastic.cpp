@@ -282,6 +282,26 @@ TEST(HyperelasticBody, SecondDerivativeMatchesDifferencesOfTheTangent) {
   }
 }
 
+TEST(HyperelasticBody, AllPairsOfSecondDerivativesInOnePassEqualThePairwiseOnes) {
+  const std::vector<mesh::StructureMesh> meshes{mesh::structured_rectangle(1.0, 0.2, 6, 2),
+                                                mesh::structured_box(1.0, 0.2, 0.15, 4, 2, 1)};
+  for (const auto& m : meshes) {
+    const HyperelasticBody body(m, model(MaterialLaw::saint_venant_kirchhoff), "test");
+    Eigen::MatrixXd directions(body.dof_count(), 3);
+    for (int i = 0; i < 3; ++i)
+      directions.col(i) = random_field(body.dof_count(), 1.0, static_cast<unsigned>(10 + i));
+    const Eigen::MatrixXd all = body.second_derivatives(directions);
+    ASSERT_EQ(all.cols(), 6);
+    int column = 0;
+    for (int i = 0; i < 3; ++i)
+      for (int j = i; j < 3; ++j, ++column) {
+        const Eigen::VectorXd pair = body.second_derivative(directions.col(i), directions.col(j));
+        EXPECT_LT((all.col(column) - pair).norm(), 1e-13 * pair.norm())
+            << m.dim << "-D, pair " << i << ", " << j;
+      }
+  }
+}
+
 TEST(HyperelasticBody, GravityLoadIsTheWeight) {
   const mesh::StructureMesh m = mesh::structured_rectangle(1.0, 0.2, 6, 2);
   const HyperelasticBody body(m, model(MaterialLaw::neo_hookean), "test");
