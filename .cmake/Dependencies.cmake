@@ -94,6 +94,11 @@ if(NOT TARGET SuiteSparse::UMFPACK)
                                                       INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}")
 endif()
 
+# BLAS (libblas-dev, which libsuitesparse-dev depends on; OpenBLAS replaces it at run time
+# through update-alternatives): the dense symmetric rank-k updates of the reduced tensors.
+find_package(BLAS QUIET)
+hm_require(BLAS_FOUND libblas-dev "BLAS")
+
 if(HM_BUILD_TESTS)
   find_package(GTest QUIET)
   hm_require(GTest_FOUND libgtest-dev "GoogleTest")

