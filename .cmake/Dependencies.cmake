@@ -10,6 +10,24 @@ function(hm_require found_var debian_package what)
   endif()
 endfunction()
 
+# An IMPORTED target for a library with neither a CMake config nor a .pc file: lib<library> found
+# on the system, headers in `include_dir` (found by the caller); stops like hm_require if either
+# is missing.
+function(hm_import_library target library include_dir debian_package what)
+  string(MAKE_C_IDENTIFIER "${target}" prefix)
+  find_library(${prefix}_LIBRARY ${library})
+  set(found FALSE)
+  if(include_dir AND ${prefix}_LIBRARY)
+    set(found TRUE)
+  endif()
+  hm_require(found "${debian_package}" "${what}")
+  if(NOT TARGET ${target})
+    add_library(${target} UNKNOWN IMPORTED)
+    set_target_properties(${target} PROPERTIES IMPORTED_LOCATION "${${prefix}_LIBRARY}"
+                                               INTERFACE_INCLUDE_DIRECTORIES "${include_dir}")
+  endif()
+endfunction()
+
 find_package(Eigen3 3.3 QUIET NO_MODULE)
 hm_require(Eigen3_FOUND libeigen3-dev "Eigen 3")
 
@@ -58,41 +76,16 @@ hm_require(ARPACK_FOUND libarpack2-dev "ARPACK-ng")
 
 # gmsh 4.8 ships only gmsh.h and libgmsh.so (no CMake config, no .pc).
 find_path(GMSH_INCLUDE_DIR gmsh.h)
-find_library(GMSH_LIBRARY gmsh)
-if(GMSH_INCLUDE_DIR AND GMSH_LIBRARY)
-  set(GMSH_FOUND TRUE)
-endif()
-hm_require(GMSH_FOUND libgmsh-dev "gmsh C++ API")
-if(NOT TARGET gmsh::gmsh)
-  add_library(gmsh::gmsh UNKNOWN IMPORTED)
-  set_target_properties(gmsh::gmsh PROPERTIES IMPORTED_LOCATION "${GMSH_LIBRARY}"
-                                              INTERFACE_INCLUDE_DIRECTORIES "${GMSH_INCLUDE_DIR}")
-endif()
+hm_import_library(gmsh::gmsh gmsh "${GMSH_INCLUDE_DIR}" libgmsh-dev "gmsh C++ API")
 
 # CHOLMOD (SuiteSparse 5.12) has no CMake config and no .pc either.
 find_path(CHOLMOD_INCLUDE_DIR cholmod.h PATH_SUFFIXES suitesparse)
-find_library(CHOLMOD_LIBRARY cholmod)
-if(CHOLMOD_INCLUDE_DIR AND CHOLMOD_LIBRARY)
-  set(CHOLMOD_FOUND TRUE)
-endif()
-hm_require(CHOLMOD_FOUND libsuitesparse-dev "SuiteSparse CHOLMOD")
-if(NOT TARGET SuiteSparse::CHOLMOD)
-  add_library(SuiteSparse::CHOLMOD UNKNOWN IMPORTED)
-  set_target_properties(SuiteSparse::CHOLMOD PROPERTIES IMPORTED_LOCATION "${CHOLMOD_LIBRARY}"
-                                                      INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}")
-endif()
-
-# UMFPACK (the same SuiteSparse package): the sparse LU of large unsymmetric Newton matrices.
-find_library(UMFPACK_LIBRARY umfpack)
-if(CHOLMOD_INCLUDE_DIR AND UMFPACK_LIBRARY)
-  set(UMFPACK_FOUND TRUE)
-endif()
-hm_require(UMFPACK_FOUND libsuitesparse-dev "SuiteSparse UMFPACK")
-if(NOT TARGET SuiteSparse::UMFPACK)
-  add_library(SuiteSparse::UMFPACK UNKNOWN IMPORTED)
-  set_target_properties(SuiteSparse::UMFPACK PROPERTIES IMPORTED_LOCATION "${UMFPACK_LIBRARY}"
-                                                      INTERFACE_INCLUDE_DIRECTORIES "${CHOLMOD_INCLUDE_DIR}")
-endif()
+hm_import_library(SuiteSparse::CHOLMOD cholmod "${CHOLMOD_INCLUDE_DIR}" libsuitesparse-dev
+                  "SuiteSparse CHOLMOD")
+# UMFPACK (the same package, headers beside CHOLMOD's): the sparse LU of large unsymmetric
+# Newton matrices.
+hm_import_library(SuiteSparse::UMFPACK umfpack "${CHOLMOD_INCLUDE_DIR}" libsuitesparse-dev
+                  "SuiteSparse UMFPACK")
 
 # BLAS (libblas-dev, which libsuitesparse-dev depends on; OpenBLAS replaces it at run time
 # through update-alternatives): the dense symmetric rank-k updates of the reduced tensors.

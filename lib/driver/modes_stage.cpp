@@ -148,11 +148,11 @@ ReducedModel reduced_model(const io::Scene& scene, const MeshArtefact& mesh,
                                   .derivatives = true,
                                   .derivative_modes = derivative_modes(scene, modes.count())};
   ReducedModel out;
-  out.basis = fem::build_reduced_basis(body, dofs, {modes.shapes, modes.eigenvalues, 0}, options,
-                                       context, &system);
+  out.basis =
+      fem::build_reduced_basis(body, dofs, {modes.shapes, modes.eigenvalues, 0}, options, context);
   out.derivatives_seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
-  out.tensors.emplace(body, out.basis.vectors, context, &system.mass);
+  out.tensors.emplace(body, out.basis.vectors, context);
   const Eigen::MatrixXd vtm = out.basis.vectors.transpose() * system.mass;
   out.participation_translation = vtm * fem::rigid_translations(mesh.structure);
   out.participation_rotation = vtm * fem::rigid_rotations(mesh.structure, modes.reference_point);

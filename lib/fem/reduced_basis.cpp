@@ -162,7 +162,7 @@ void validate(const BasisOptions& o, std::string_view context) {
 
 ReducedBasis build_reduced_basis(const HyperelasticBody& body, const DofMap& dofs,
                                  const LinearModes& modes, const BasisOptions& options,
-                                 std::string_view context, const SystemMatrices* assembled) {
+                                 std::string_view context) {
   validate(options, context);
   if (modes.shapes.cols() < options.modes || modes.shapes.rows() != body.dof_count())
     input_error("{}: {} modes of {} DOFs given; {} modes of {} DOFs needed", context,
@@ -175,11 +175,10 @@ ReducedBasis build_reduced_basis(const HyperelasticBody& body, const DofMap& dof
   Eigen::MatrixXd theta(dofs.free_count(), 0);
   if (k > 0) {
     Cholesky llt;
-    factorize_stiffness(
-        llt, dofs.reduce(assembled ? assembled->stiffness : body.linear_stiffness()), context);
+    factorize_stiffness(llt, dofs.reduce(body.linear_stiffness()), context);
     theta = modal_derivatives(body, dofs, llt, phi, k, pairs);
   }
-  const SparseMatrix m = dofs.reduce(assembled ? assembled->mass : body.mass());
+  const SparseMatrix m = dofs.reduce(body.mass());
   MOrthonormalSet set(m, options.modes + theta.cols());
   ReducedBasis out;
   for (int i = 0; i < options.modes; ++i) {

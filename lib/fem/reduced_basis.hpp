@@ -23,7 +23,6 @@
 
 #include <Eigen/Core>
 
-#include "fem/assembly.hpp"
 #include "fem/dof_map.hpp"
 #include "fem/hyperelastic_body.hpp"
 
@@ -68,13 +67,10 @@ struct ReducedBasis {
 };
 
 /// V from given modes (mass-normalised, full DOF vectors, at least options.modes of them).
-/// `assembled`: the body's K₀ and M as the caller already has them (fsi-modes assembles them for
-/// the eigensolver), so that they are not assembled twice; null: assembled here.
 /// InputError naming `context` for invalid options or too few modes.
 ReducedBasis build_reduced_basis(const HyperelasticBody& body, const DofMap& dofs,
                                  const LinearModes& modes, const BasisOptions& options,
-                                 std::string_view context,
-                                 const SystemMatrices* assembled = nullptr);
+                                 std::string_view context);
 /// V with the modes from lowest_modes().
 ReducedBasis build_reduced_basis(const HyperelasticBody& body, const DofMap& dofs,
                                  const BasisOptions& options, std::string_view context);

@@ -122,7 +122,7 @@ double orderings(int j, int k, int l) {
 }  // namespace
 
 ReducedStvk::ReducedStvk(const HyperelasticBody& body, Eigen::MatrixXd basis,
-                         std::string_view context, const Eigen::SparseMatrix<double>* mass)
+                         std::string_view context)
     : basis_(std::move(basis)) {
   const auto begin = std::chrono::steady_clock::now();
   if (body.model().law != MaterialLaw::saint_venant_kirchhoff)
@@ -135,7 +135,7 @@ ReducedStvk::ReducedStvk(const HyperelasticBody& body, Eigen::MatrixXd basis,
                 basis_.cols(), body.dof_count());
   list_triples();
   coefficients_from(body.dim() == 2 ? gram_matrix<2>(body, basis_) : gram_matrix<3>(body, basis_));
-  mass_ = basis_.transpose() * ((mass ? *mass : body.mass()) * basis_);
+  mass_ = basis_.transpose() * (body.mass() * basis_);
   setup_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - begin).count();
 }
 

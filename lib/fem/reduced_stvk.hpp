@@ -48,9 +48,8 @@ class ReducedStvk {
  public:
   /// The tensors of `body` in the basis `basis` (n_dofs × r; zero at clamped DOFs for a clamped
   /// body). InputError naming `context` for a neo-Hookean body, a basis of the wrong height or
-  /// none. `mass`: the body's M if the caller has it assembled (null: assembled here).
-  ReducedStvk(const HyperelasticBody& body, Eigen::MatrixXd basis, std::string_view context,
-              const Eigen::SparseMatrix<double>* mass = nullptr);
+  /// none.
+  ReducedStvk(const HyperelasticBody& body, Eigen::MatrixXd basis, std::string_view context);
   /// A model from stored tensors (fsi-modes' modes.h5): V (n_dofs × r), M_r, K1 (r × r), K2
   /// (r × r(r+1)/2), K3 (r × r(r+1)(r+2)/6) as the accessors below return them. InputError
   /// naming `context` when their sizes do not fit one r.

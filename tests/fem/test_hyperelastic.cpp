@@ -230,7 +230,7 @@ TEST(HyperelasticBody, LinearLimitIsTheLinearModel) {
       const Eigen::SparseMatrix<double> k0 =
           body.evaluate(Eigen::VectorXd::Zero(body.dof_count()), {true}).tangent;
       EXPECT_LT((k0 - linear.stiffness).norm(), 1e-12 * linear.stiffness.norm());
-      // fsi-modes hands the assembled K and M to the reduced model in place of the body's own.
+      // The body's stored K₀ (the modal derivatives' matrix) is the linear model's K.
       EXPECT_LT((body.linear_stiffness() - linear.stiffness).norm(),
                 1e-12 * linear.stiffness.norm());
       EXPECT_EQ((body.mass() - linear.mass).norm(), 0.0);
