@@ -284,6 +284,13 @@ const std::vector<KeyDecl>& scene_keys() {
            simulate_stage),
       number("solver.support_factor", "2.5", "1", 1.5, 5,
              "support radius h of the LDD operators in units of dx", simulate_stage),
+      number("solver.wall_node_spacing", "1.0", "1", 0.0625, 1,
+             "largest spacing of the wall nodes along every wall (tank, obstacle and "
+             "structure), in units of dx: edges longer than it are subdivided; nodes also sit at "
+             "every vertex of a wall mesh, so a mesh finer than this gives denser nodes. The "
+             "coupled answer on thin bodies depends on it (pipelines/elastic_gate/README.md); "
+             "below dx/16 the wall rows of the PPE degrade (the gate's added mass +86 % at dx/32)",
+             simulate_stage),
       integer("solver.pbd_iterations", "4", 0, 100,
               "Jacobi iterations of the position-based regularisation (0 disables it)",
               simulate_stage),

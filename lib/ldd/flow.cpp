@@ -122,6 +122,8 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
   require(o.support_factor >= 1.5 && o.support_factor <= 4.0,
           fmt::format("flow: support_factor = {} must be in [1.5, 4]", o.support_factor));
   require(o.pbd_iterations >= 0, "flow: pbd_iterations must be ≥ 0");
+  require(o.wall_node_spacing >= 0.0625 && o.wall_node_spacing <= 1.0,
+          fmt::format("flow: wall_node_spacing = {} must be in [1/16, 1]", o.wall_node_spacing));
   require(o.cfl > 0.0 && o.cfl <= 1.0, fmt::format("flow: cfl = {} must be in (0, 1]", o.cfl));
   require(!walls_.empty(), "flow: a flow needs at least one wall");
   require(!fluid.empty(), "flow: no fluid points");
@@ -131,7 +133,7 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
   for (std::size_t k = 0; k < fluid.size(); ++k)
     points_.add_fluid(fluid[k], velocity.empty() ? Vec<D>::Zero() : velocity[k]);
   for (std::size_t b = 0; b < walls_.size(); ++b)
-    add_wall_nodes<D>(points_, walls_[b], static_cast<int>(b), o.dx);
+    add_wall_nodes<D>(points_, walls_[b], static_cast<int>(b), o.wall_node_spacing * o.dx);
 
   const auto [lower, upper] = wall_box();
   const double h = support();

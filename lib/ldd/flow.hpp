@@ -69,6 +69,9 @@ struct FlowOptions {
   // Discretisation
   double dx = 0.0;              ///< initial point spacing [m], > 0
   double support_factor = 2.5;  ///< h = support_factor · dx
+  /// Largest spacing of the wall nodes along a wall, in units of dx (add_wall_nodes); nodes
+  /// also sit at every vertex of a wall mesh.
+  double wall_node_spacing = 1.0;
   ViscousScheme viscous = ViscousScheme::explicit_euler;
   // PBD (§1.4)
   int pbd_iterations = 4;

@@ -5,7 +5,8 @@
 // signed distance (sign from the angle-weighted pseudo-normal of the closest feature: face, edge
 // or vertex; positive on the fluid side; unsigned beyond an open end of the mesh, where there is
 // no inside) and segment crossing. Wall nodes (CHOICE-B, §0.2) are
-// sampled on the elements at spacing ≤ dx and follow the mesh through their barycentrics.
+// sampled on the elements at spacing ≤ FlowOptions::wall_node_spacing·dx and follow the mesh
+// through their barycentrics.
 #include <array>
 #include <memory>
 #include <span>
@@ -97,11 +98,11 @@ class WallMesh {
   std::unique_ptr<Tree> tree_;
 };
 
-/// Samples wall nodes on every element of `wall` at spacing ≤ dx [m] (vertices and shared edges
-/// once) and appends them to `points` with body index `body`; a thin wall gets a second set with
-/// the opposite normal. Sets their velocity and acceleration from the wall. Returns the count.
+/// Samples wall nodes on every element of `wall` at spacing ≤ `spacing` [m] (vertices and shared
+/// edges once) and appends them to `points` with body index `body`; a thin wall gets a second set
+/// with the opposite normal. Sets their velocity and acceleration from the wall. Returns the count.
 template <int D>
-Index add_wall_nodes(PointSet<D>& points, const WallMesh<D>& wall, int body, double dx);
+Index add_wall_nodes(PointSet<D>& points, const WallMesh<D>& wall, int body, double spacing);
 
 /// Moves every wall node to its host element's current position and sets its normal, velocity
 /// and acceleration (walls[body] is the node's wall).
