@@ -214,6 +214,7 @@ ldd::FlowOptions<D> flow_options(const io::Scene& scene) {
   o.dx = fluid.number("dx");
   o.support_factor = solver.number("support_factor");
   o.wall_node_spacing = solver.number("wall_node_spacing");
+  o.wall_node_weights = solver.boolean("wall_node_weights");
   o.viscous = solver.string("viscosity") == "implicit" ? ldd::ViscousScheme::implicit_euler
                                                        : ldd::ViscousScheme::explicit_euler;
   o.pbd_iterations = static_cast<int>(solver.integer("pbd_iterations"));

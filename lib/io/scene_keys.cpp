@@ -291,6 +291,12 @@ const std::vector<KeyDecl>& scene_keys() {
              "coupled answer on thin bodies depends on it (pipelines/elastic_gate/README.md); "
              "below dx/16 the wall rows of the PPE degrade (the gate's added mass +86 % at dx/32)",
              simulate_stage),
+      boolean("solver.wall_node_weights", "false",
+              "wall nodes enter the LDD operators with the wall length (area) they stand for "
+              "instead of weight 1, so that the answer does not depend on how densely a wall is "
+              "sampled (solver.wall_node_spacing, or a wall mesh finer than dx); off: every "
+              "point weighs 1, as in the paper",
+              simulate_stage),
       integer("solver.pbd_iterations", "4", 0, 100,
               "Jacobi iterations of the position-based regularisation (0 disables it)",
               simulate_stage),

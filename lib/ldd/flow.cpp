@@ -232,7 +232,8 @@ void FlowSolver<D>::restore(FlowState<D> s) {
   step_start_.clear();
   // The operators of the last step are not carried between steps; those of the restored
   // points keep acceleration_pressure usable right away.
-  ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators);
+  update_node_weights();
+  ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators, node_weight_);
 }
 
 template <int D>
@@ -323,7 +324,7 @@ void FlowSolver<D>::begin_step(double dt) {
   if (options_.resort_interval > 0 && (step_ + 1) % options_.resort_interval == 0) resort();
   rebuild_neighbours();
   lap(t, m.seconds.neighbours);
-  ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators);
+  ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators, node_weight_);
   lap(t, m.seconds.operators);
   detect_free_surface<D>(points_, neighbours_, ops_, options_.free_surface);
   mark_sparse_points_as_surface();
@@ -635,13 +636,24 @@ template <int D>
 void FlowSolver<D>::rebuild_neighbours() {
   neighbours_ = find_neighbours<D>(points_.position, support());
   cut_pairs_through_thin_walls<D>(neighbours_, points_, walls_);
+  // Before the dry nodes lose their pairs: the last wet node below a free surface stands for
+  // its own share of the wall, not for the dry part above it too.
+  update_node_weights();
   deactivate_dry_wall_nodes<D>(points_, neighbours_);
   deactivate_wall_nodes_beyond_fluid<D>(points_, neighbours_, options_.free_surface);
 }
 
 template <int D>
+void FlowSolver<D>::update_node_weights() {
+  if (options_.wall_node_weights)
+    node_weight_ = wall_node_weights<D>(points_, neighbours_, options_.dx);
+  else
+    node_weight_.clear();  // every point weight 1
+}
+
+template <int D>
 void FlowSolver<D>::classify_points() {
-  ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators);
+  ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators, node_weight_);
   detect_free_surface<D>(points_, neighbours_, ops_, options_.free_surface);
   mark_sparse_points_as_surface();
 }

@@ -72,6 +72,10 @@ struct FlowOptions {
   /// Largest spacing of the wall nodes along a wall, in units of dx (add_wall_nodes); nodes
   /// also sit at every vertex of a wall mesh.
   double wall_node_spacing = 1.0;
+  /// Whether wall nodes enter the operators with the wall measure they stand for
+  /// (wall_node_weights) instead of weight 1: the answer then no longer depends on how densely
+  /// a wall is sampled.
+  bool wall_node_weights = false;
   ViscousScheme viscous = ViscousScheme::explicit_euler;
   // PBD (§1.4)
   int pbd_iterations = 4;
@@ -251,6 +255,8 @@ class FlowSolver {
   void move_points(std::span<const Vec<D>> shift, std::vector<Vec<D>>& total);
   double typical_step() const;
   void rebuild_neighbours();
+  /// The wall nodes' quadrature weights for the operators (options().wall_node_weights).
+  void update_node_weights();
   void classify_points();
   void mark_sparse_points_as_surface();
   std::vector<Vec<D>> predict(double dt, std::vector<Vec<D>>& viscous);
@@ -275,6 +281,7 @@ class FlowSolver {
   PointSet<D> points_;
   Neighbours neighbours_;
   Operators<D> ops_;
+  std::vector<double> node_weight_;    ///< ω per point for the operators; empty: all 1
   std::vector<Mat<D>> grad_u_;         ///< ∇u per point from the last step (Taylor transport)
   std::vector<double> wall_distance_;  ///< lower bound of each fluid point's wall clearance [m]
   std::vector<double> acceleration_;   ///< |Δu/Δt| of the last step per point [m/s²]

@@ -30,14 +30,15 @@ Eigen::Matrix<double, wls_size<D>, 1> wls_basis(const Vec<D>& s) {
 /// Second-order WLS Laplacian coefficients of point i into c (false if the fit is singular).
 template <int D>
 bool wls_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i, double h,
-                   double* c) {
+                   std::span<const double> omega, double* c) {
+  auto om = [&](Index j) { return omega.empty() ? 1.0 : omega[j]; };
   constexpr int K = wls_size<D>;
   if (static_cast<int>(nbr.size()) < K) return false;
   Eigen::Matrix<double, K, K> G = Eigen::Matrix<double, K, K>::Zero();
   for (Index j : nbr) {
     const Vec<D> s = (x[j] - x[i]) / h;
     const auto p = wls_basis<D>(s);
-    G.noalias() += wendland_c2(s.norm()) * p * p.transpose();
+    G.noalias() += om(j) * wendland_c2(s.norm()) * p * p.transpose();
   }
   Eigen::Matrix<double, K, 1> e = Eigen::Matrix<double, K, 1>::Zero();
   e.template segment<D>(D).setOnes();  // ∇²f = Σ_a H_aa = Σ_a coefficient of ½ s_a², / h²
@@ -50,7 +51,7 @@ bool wls_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index 
   const Eigen::Matrix<double, K, 1> y = llt.solve(e);
   for (std::size_t k = 0; k < nbr.size(); ++k) {
     const Vec<D> s = (x[nbr[k]] - x[i]) / h;
-    c[k] = wendland_c2(s.norm()) * y.dot(wls_basis<D>(s)) / (h * h);
+    c[k] = om(nbr[k]) * wendland_c2(s.norm()) * y.dot(wls_basis<D>(s)) / (h * h);
   }
   return true;
 }
@@ -58,12 +59,13 @@ bool wls_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index 
 /// Eq. 7 coefficients of point i into c; returns whether a modified weight was negative.
 template <int D>
 bool offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i, double h,
-                      const Vec<D>& Bo, double* c) {
+                      const Vec<D>& Bo, std::span<const double> omega, double* c) {
   double denominator = 0.0;
   bool negative = false;
   for (std::size_t k = 0; k < nbr.size(); ++k) {
     const Vec<D> r = x[nbr[k]] - x[i];
-    const double w = wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo));
+    const double w =
+        (omega.empty() ? 1.0 : omega[nbr[k]]) * wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo));
     negative = negative || w < 0.0;
     c[k] = w;
     denominator += w * r.squaredNorm();
@@ -79,11 +81,13 @@ bool offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Ind
 /// c_ij ≥ 0, so the row is diagonally dominant, at first-order accuracy.
 template <int D>
 void clamped_offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i,
-                              double h, const Vec<D>& Bo, double* c) {
+                              double h, const Vec<D>& Bo, std::span<const double> omega,
+                              double* c) {
   double denominator = 0.0;
   for (std::size_t k = 0; k < nbr.size(); ++k) {
     const Vec<D> r = x[nbr[k]] - x[i];
-    const double w = std::max(0.0, wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo)));
+    const double w = std::max(
+        0.0, (omega.empty() ? 1.0 : omega[nbr[k]]) * wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo)));
     c[k] = w;
     denominator += w * r.squaredNorm();
   }
@@ -105,7 +109,7 @@ double dominance(const double* c, std::size_t n) {
 
 template <int D>
 Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
-                               const OperatorOptions& opt) {
+                               const OperatorOptions& opt, std::span<const double> omega) {
   const Index n = nb.points();
   HM_ASSERT(static_cast<std::size_t>(n) == x.size(), "operators: {} lists for {} points", n,
             x.size());
@@ -120,6 +124,9 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
   ops.lambda_min.assign(static_cast<std::size_t>(n), 0.0);
   ops.flags.assign(static_cast<std::size_t>(n), 0);
   ops.laplacian.assign(nb.indices.size(), 0.0);
+  HM_ASSERT(omega.empty() || omega.size() == x.size(), "operators: {} weights for {} points",
+            omega.size(), x.size());
+  ops.weight.assign(omega.begin(), omega.end());
 
 #pragma omp parallel for schedule(dynamic, 128)
   for (Index i = 0; i < n; ++i) {
@@ -129,7 +136,7 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
     double density = 0.0, moment = 0.0;
     for (Index j : nbr) {
       const Vec<D> r = x[j] - x[i];
-      const double d = r.norm(), w = wendland_c2(d / h);
+      const double d = r.norm(), w = ops.weight_of(j) * wendland_c2(d / h);
       A.noalias() += w * r * r.transpose();
       o += w * r;
       density += w;
@@ -154,11 +161,12 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
       ops.renormalisation[i] = A.inverse();
     }
     double* c = ops.laplacian.data() + nb.offsets[i];
-    if (offset_laplacian<D>(x, nbr, i, h, ops.renormalisation[i] * o, c)) flags |= op_negative;
+    if (offset_laplacian<D>(x, nbr, i, h, ops.renormalisation[i] * o, omega, c))
+      flags |= op_negative;
     const bool want_wls = opt.laplacian == LaplacianScheme::wls_everywhere ||
                           (opt.laplacian == LaplacianScheme::wls_where_needed &&
                            ((flags & op_negative) || ops.offset_ratio[i] > opt.one_sided_offset));
-    if (want_wls && wls_laplacian<D>(x, nbr, i, h, c)) flags |= op_wls;
+    if (want_wls && wls_laplacian<D>(x, nbr, i, h, omega, c)) flags |= op_wls;
     // A row whose diagonal −Σc_ij is small against Σ|c_ij| (eq. 7 with D_i ≤ 0, a WLS fit on a
     // lopsided stencil, or eq. 7 with negative weights where the WLS fit failed) can make the
     // PPE locally near-singular: the K&O dam break at L/40 reached 10⁸ Pa and blew up from such
@@ -166,7 +174,7 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
     const bool weak = opt.min_dominance > 0.0 && (dominance(c, nbr.size()) < opt.min_dominance ||
                                                   ((flags & op_negative) && !(flags & op_wls)));
     if (weak && !nbr.empty()) {
-      clamped_offset_laplacian<D>(x, nbr, i, h, ops.renormalisation[i] * o, c);
+      clamped_offset_laplacian<D>(x, nbr, i, h, ops.renormalisation[i] * o, omega, c);
       flags = static_cast<std::uint8_t>((flags & ~op_wls) | op_clamped);
     }
     ops.flags[i] = flags;
@@ -185,7 +193,7 @@ std::vector<Vec<D>> gradient(std::span<const Vec<D>> x, const Neighbours& nb,
     Vec<D> s = Vec<D>::Zero();
     for (Index j : nb.of(i)) {
       const Vec<D> r = x[j] - x[i];
-      s += wendland_c2(r.norm() / ops.radius) * (f[j] - f[i]) * r;
+      s += ops.weight_of(j) * wendland_c2(r.norm() / ops.radius) * (f[j] - f[i]) * r;
     }
     g[i] = ops.renormalisation[i] * s;
   }
@@ -203,7 +211,8 @@ std::vector<double> divergence(std::span<const Vec<D>> x, const Neighbours& nb,
     Mat<D> grad = Mat<D>::Zero();  // Σ W (u_j − u_i) ⊗ r, then ∇·u = tr(grad B)
     for (Index j : nb.of(i)) {
       const Vec<D> r = x[j] - x[i];
-      grad.noalias() += wendland_c2(r.norm() / ops.radius) * (u[j] - u[i]) * r.transpose();
+      grad.noalias() +=
+          ops.weight_of(j) * wendland_c2(r.norm() / ops.radius) * (u[j] - u[i]) * r.transpose();
     }
     div[i] = (grad * ops.renormalisation[i]).trace();
   }
@@ -223,7 +232,7 @@ std::vector<Mat<D>> slip_velocity_gradient(const PointSet<D>& pts, const Neighbo
       const Vec<D> r = pts.position[j] - pts.position[i];
       Vec<D> du = u[j] - u[i];
       if (pts.kind[j] == PointKind::wall) du = pts.wall_normal[j].dot(du) * pts.wall_normal[j];
-      s.noalias() += wendland_c2(r.norm() / ops.radius) * du * r.transpose();
+      s.noalias() += ops.weight_of(j) * wendland_c2(r.norm() / ops.radius) * du * r.transpose();
     }
     grad[i] = s * ops.renormalisation[i];
   }
@@ -246,9 +255,9 @@ std::vector<double> laplacian(const Neighbours& nb, const Operators<D>& ops,
 }
 
 template Operators<2> compute_operators<2>(std::span<const Vec<2>>, const Neighbours&,
-                                           const OperatorOptions&);
+                                           const OperatorOptions&, std::span<const double>);
 template Operators<3> compute_operators<3>(std::span<const Vec<3>>, const Neighbours&,
-                                           const OperatorOptions&);
+                                           const OperatorOptions&, std::span<const double>);
 template std::vector<Vec<2>> gradient<2>(std::span<const Vec<2>>, const Neighbours&,
                                          const Operators<2>&, std::span<const double>);
 template std::vector<Vec<3>> gradient<3>(std::span<const Vec<3>>, const Neighbours&,

@@ -59,19 +59,26 @@ struct Operators {
   std::vector<double> lambda_min;       ///< smallest eigenvalue of M_i (1 for isotropic)
   std::vector<std::uint8_t> flags;      ///< OperatorFlag bits
   std::vector<double> laplacian;        ///< c_ij [1/m²], aligned with Neighbours::indices
+  /// Quadrature weight ω_j of each point in every sum over neighbours (empty: all 1). A wall node
+  /// stands for the wall measure it samples, ω = measure / dx^(D−1) (wall_node_weights): the
+  /// wall's share of the moments then does not grow with the wall-node density.
+  std::vector<double> weight;
 
   bool isolated(Index i) const { return flags[i] & op_isolated; }
+  double weight_of(Index j) const { return weight.empty() ? 1.0 : weight[j]; }
 };
 
 /// Computes the operators of every point from the neighbour lists; OpenMP parallel.
+/// `weight`: ω per point (Operators::weight), empty = all 1.
 template <int D>
 Operators<D> compute_operators(std::span<const Vec<D>> positions, const Neighbours& neighbours,
-                               const OperatorOptions& options = {});
+                               const OperatorOptions& options = {},
+                               std::span<const double> weight = {});
 
-/// Gradient coefficient g_ij = W_ij B_i r_ij of pair (i, j) [1/m].
+/// Gradient coefficient g_ij = ω_j W_ij B_i r_ij of pair (i, j) [1/m].
 template <int D>
-inline Vec<D> gradient_weight(const Operators<D>& ops, Index i, const Vec<D>& r_ij) {
-  return wendland_c2(r_ij.norm() / ops.radius) * (ops.renormalisation[i] * r_ij);
+inline Vec<D> gradient_weight(const Operators<D>& ops, Index i, Index j, const Vec<D>& r_ij) {
+  return ops.weight_of(j) * wendland_c2(r_ij.norm() / ops.radius) * (ops.renormalisation[i] * r_ij);
 }
 
 /// ⟨∇f⟩_i of eq. 6 for every point (zero at isolated points).

@@ -23,7 +23,7 @@ double neumann_row(const PointSet<D>& pts, const Neighbours& nb, const Operators
   std::size_t k = 0;
   for (Index j : nb.of(i)) {
     const double v =
-        pts.wall_normal[i].dot(gradient_weight<D>(ops, i, pts.position[j] - pts.position[i]));
+        pts.wall_normal[i].dot(gradient_weight<D>(ops, i, j, pts.position[j] - pts.position[i]));
     c[k++] = v;
     diagonal -= v;
   }

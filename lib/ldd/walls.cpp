@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <numbers>
 #include <numeric>
 
 #include <Eigen/Geometry>
@@ -539,6 +540,29 @@ void update_wall_nodes(PointSet<D>& points, std::span<const WallMesh<D>> walls) 
 }
 
 template <int D>
+std::vector<double> wall_node_weights(const PointSet<D>& points, const Neighbours& nb, double dx) {
+  HM_ASSERT(dx > 0.0, "wall_node_weights: dx {} must be > 0", dx);
+  const Index n = points.size();
+  const double h = nb.radius;
+  const double integral = D == 2 ? 2.0 * h / 3.0 : std::numbers::pi * h * h / 7.0;
+  const double cell = D == 2 ? dx : dx * dx;
+  std::vector<double> w(static_cast<std::size_t>(n), 1.0);
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    if (points.kind[i] != PointKind::wall) continue;
+    double sum = 1.0;  // W(0): the node itself
+    for (Index j : nb.of(i)) {
+      if (points.kind[j] != PointKind::wall || points.host[j].body != points.host[i].body ||
+          points.wall_normal[j].dot(points.wall_normal[i]) < -0.5)
+        continue;
+      sum += wendland_c2((points.position[j] - points.position[i]).norm() / h);
+    }
+    w[i] = integral / (cell * sum);
+  }
+  return w;
+}
+
+template <int D>
 std::int64_t cut_pairs_through_thin_walls(Neighbours& nb, const PointSet<D>& points,
                                           std::span<const WallMesh<D>> walls) {
   const Index n = points.size();
@@ -604,6 +628,8 @@ template Index add_wall_nodes<2>(PointSet<2>&, const WallMesh<2>&, int, double);
 template Index add_wall_nodes<3>(PointSet<3>&, const WallMesh<3>&, int, double);
 template void update_wall_nodes<2>(PointSet<2>&, std::span<const WallMesh<2>>);
 template void update_wall_nodes<3>(PointSet<3>&, std::span<const WallMesh<3>>);
+template std::vector<double> wall_node_weights<2>(const PointSet<2>&, const Neighbours&, double);
+template std::vector<double> wall_node_weights<3>(const PointSet<3>&, const Neighbours&, double);
 template std::int64_t cut_pairs_through_thin_walls<2>(Neighbours&, const PointSet<2>&,
                                                       std::span<const WallMesh<2>>);
 template std::int64_t cut_pairs_through_thin_walls<3>(Neighbours&, const PointSet<3>&,
