@@ -518,21 +518,22 @@ void FlowSolver<D>::regularise_positions(double dt) {
       shift[i].setZero();
       if (!is_fluid(points_, i)) continue;
       Vec<D> delta = Vec<D>::Zero();
-      int count = 0;
+      double count = 0.0;  // pairs, a wall node counting as the wall share it stands for
       for (Index j : neighbours_.of(i)) {
         const Vec<D> r = points_.position[j] - points_.position[i];
         const double d = r.norm();
         if (d <= 0.0) continue;
+        const double w = node_weight(j);
         if (is_fluid(points_, j)) {
           if (d >= d0) continue;
           delta -= 0.5 * (d0 - d) / d * r;
         } else {
           if (d >= d0_wall) continue;
-          delta -= (d0_wall - d) / d * r;
+          delta -= w * (d0_wall - d) / d * r;
         }
-        ++count;
+        count += w;
       }
-      if (count == 0) continue;
+      if (count == 0.0) continue;
       delta *= o.pbd_relaxation / count;
       const double length = delta.norm();
       if (length > clamp) delta *= clamp / length;
@@ -567,10 +568,10 @@ Vec<D> FlowSolver<D>::concentration_gradient(Index i, bool& near_surface) const 
   const double h = support(), dx = options_.dx;
   const Vec<D>& xi = points_.position[i];
   Vec<D> grad = Vec<D>::Zero();
-  auto add = [&](const Vec<D>& xj) {
+  auto add = [&](const Vec<D>& xj, double weight = 1.0) {
     const Vec<D> r = xi - xj;
     const double d = r.norm();
-    if (d > 0.0 && d < h) grad += (wendland_c2_derivative(d / h) / (h * d)) * r;
+    if (d > 0.0 && d < h) grad += (weight * wendland_c2_derivative(d / h) / (h * d)) * r;
   };
   for (Index j : neighbours_.of(i)) {
     const Vec<D>& xj = points_.position[j];
@@ -582,8 +583,9 @@ Vec<D> FlowSolver<D>::concentration_gradient(Index i, bool& near_surface) const 
     }
     const Vec<D>& n = points_.wall_normal[j];
     if (n.dot(xi - xj) <= 0.0) continue;  // the node faces away (the far side of a thin wall)
-    add(xj - 0.5 * dx * n);
-    add(xj - 1.5 * dx * n);
+    // A node sampled finer than dx stands for that share of a lattice column.
+    add(xj - 0.5 * dx * n, node_weight(j));
+    add(xj - 1.5 * dx * n, node_weight(j));
   }
   return grad / n0_;
 }

@@ -23,10 +23,11 @@ struct RestReport {
 };
 
 template <int D>
-RestReport rest(const Vec<D>& size, double depth, double dx, double end, double jitter) {
+RestReport rest(const Vec<D>& size, double depth, double dx, double end, double jitter,
+                FlowOptions<D> options = {}) {
   Box<D> fluid{Vec<D>::Zero(), size};
   fluid.upper[D - 1] = depth;
-  auto flow = test::water_in_tank<D>(size, fluid, dx, {}, jitter);
+  auto flow = test::water_in_tank<D>(size, fluid, dx, options, jitter);
   RestReport r;
   r.steps = test::run_until<D>(flow, end, &r.max_drift);
   const auto& p = flow.points();
@@ -63,6 +64,28 @@ TEST(LddFlow, JitteredTankAtRest2D) {
   EXPECT_LT(r.spread, 0.25 * 0.01);
   EXPECT_EQ(r.outside, 0);
   EXPECT_LT(r.max_speed, 0.05);
+}
+
+// The same tank with the wall nodes weighted by the wall length they stand for
+// (solver.wall_node_weights): sampled at dx or at dx/16, the same answer. Measured: volume change
+// +0.167 / +0.166 %, pressure error 0.100 / 0.099 %. Unweighted, the volume grew with the
+// sampling (+0.17 / +0.40 / +1.15 % at dx, dx/2, dx/4: every node added a mirrored lattice
+// column to the shifting's concentration and pushed the fluid off the walls).
+TEST(LddFlow, JitteredTankAtRestDoesNotDependOnTheWallSampling2D) {
+  std::vector<RestReport> r;
+  for (const double spacing : {1.0, 0.0625}) {
+    FlowOptions<2> options;
+    options.wall_node_weights = true;
+    options.wall_node_spacing = spacing;
+    r.push_back(rest<2>(Vec<2>(0.5, 0.4), 0.3, 0.01, 2.0, 0.2, options));
+    EXPECT_LT(r.back().pressure_error, 0.01);
+    EXPECT_LT(std::abs(r.back().volume_change), 0.005);
+    EXPECT_LT(r.back().spread, 0.25 * 0.01);
+    EXPECT_EQ(r.back().outside, 0);
+    EXPECT_LT(r.back().max_speed, 0.05);
+  }
+  EXPECT_NEAR(r[1].volume_change, r[0].volume_change, 0.0005);
+  EXPECT_NEAR(r[1].pressure_error, r[0].pressure_error, 0.0005);
 }
 
 TEST(LddFlow, JitteredTankAtRest3D) {
