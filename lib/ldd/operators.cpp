@@ -27,18 +27,22 @@ Eigen::Matrix<double, wls_size<D>, 1> wls_basis(const Vec<D>& s) {
   return p;
 }
 
+/// ω_j of a weight list (Operators::weight), 1 when the list is empty.
+double weight_at(std::span<const double> omega, Index j) {
+  return omega.empty() ? 1.0 : omega[j];
+}
+
 /// Second-order WLS Laplacian coefficients of point i into c (false if the fit is singular).
 template <int D>
 bool wls_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i, double h,
                    std::span<const double> omega, double* c) {
-  auto om = [&](Index j) { return omega.empty() ? 1.0 : omega[j]; };
   constexpr int K = wls_size<D>;
   if (static_cast<int>(nbr.size()) < K) return false;
   Eigen::Matrix<double, K, K> G = Eigen::Matrix<double, K, K>::Zero();
   for (Index j : nbr) {
     const Vec<D> s = (x[j] - x[i]) / h;
     const auto p = wls_basis<D>(s);
-    G.noalias() += om(j) * wendland_c2(s.norm()) * p * p.transpose();
+    G.noalias() += weight_at(omega, j) * wendland_c2(s.norm()) * p * p.transpose();
   }
   Eigen::Matrix<double, K, 1> e = Eigen::Matrix<double, K, 1>::Zero();
   e.template segment<D>(D).setOnes();  // ∇²f = Σ_a H_aa = Σ_a coefficient of ½ s_a², / h²
@@ -51,7 +55,7 @@ bool wls_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index 
   const Eigen::Matrix<double, K, 1> y = llt.solve(e);
   for (std::size_t k = 0; k < nbr.size(); ++k) {
     const Vec<D> s = (x[nbr[k]] - x[i]) / h;
-    c[k] = om(nbr[k]) * wendland_c2(s.norm()) * y.dot(wls_basis<D>(s)) / (h * h);
+    c[k] = weight_at(omega, nbr[k]) * wendland_c2(s.norm()) * y.dot(wls_basis<D>(s)) / (h * h);
   }
   return true;
 }
@@ -64,8 +68,7 @@ bool offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Ind
   bool negative = false;
   for (std::size_t k = 0; k < nbr.size(); ++k) {
     const Vec<D> r = x[nbr[k]] - x[i];
-    const double w =
-        (omega.empty() ? 1.0 : omega[nbr[k]]) * wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo));
+    const double w = weight_at(omega, nbr[k]) * wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo));
     negative = negative || w < 0.0;
     c[k] = w;
     denominator += w * r.squaredNorm();
@@ -86,8 +89,8 @@ void clamped_offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> 
   double denominator = 0.0;
   for (std::size_t k = 0; k < nbr.size(); ++k) {
     const Vec<D> r = x[nbr[k]] - x[i];
-    const double w = std::max(
-        0.0, (omega.empty() ? 1.0 : omega[nbr[k]]) * wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo)));
+    const double w =
+        std::max(0.0, weight_at(omega, nbr[k]) * wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo)));
     c[k] = w;
     denominator += w * r.squaredNorm();
   }
