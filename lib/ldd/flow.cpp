@@ -523,7 +523,7 @@ void FlowSolver<D>::regularise_positions(double dt) {
         const Vec<D> r = points_.position[j] - points_.position[i];
         const double d = r.norm();
         if (d <= 0.0) continue;
-        const double w = node_weight(j);
+        const double w = ops_.weight_of(j);
         if (is_fluid(points_, j)) {
           if (d >= d0) continue;
           delta -= 0.5 * (d0 - d) / d * r;
@@ -584,8 +584,8 @@ Vec<D> FlowSolver<D>::concentration_gradient(Index i, bool& near_surface) const 
     const Vec<D>& n = points_.wall_normal[j];
     if (n.dot(xi - xj) <= 0.0) continue;  // the node faces away (the far side of a thin wall)
     // A node sampled finer than dx stands for that share of a lattice column.
-    add(xj - 0.5 * dx * n, node_weight(j));
-    add(xj - 1.5 * dx * n, node_weight(j));
+    add(xj - 0.5 * dx * n, ops_.weight_of(j));
+    add(xj - 1.5 * dx * n, ops_.weight_of(j));
   }
   return grad / n0_;
 }

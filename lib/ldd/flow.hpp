@@ -257,8 +257,6 @@ class FlowSolver {
   void rebuild_neighbours();
   /// The wall nodes' quadrature weights for the operators (options().wall_node_weights).
   void update_node_weights();
-  /// ω of point j (1 for a fluid point, and for every point without wall_node_weights).
-  double node_weight(Index j) const { return node_weight_.empty() ? 1.0 : node_weight_[j]; }
   void classify_points();
   void mark_sparse_points_as_surface();
   std::vector<Vec<D>> predict(double dt, std::vector<Vec<D>>& viscous);
