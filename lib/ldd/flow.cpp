@@ -638,8 +638,8 @@ template <int D>
 void FlowSolver<D>::rebuild_neighbours() {
   neighbours_ = find_neighbours<D>(points_.position, support());
   cut_pairs_through_thin_walls<D>(neighbours_, points_, walls_);
-  // Before the dry nodes lose their pairs: the last wet node below a free surface stands for
-  // its own share of the wall, not for the dry part above it too.
+  // From the wall nodes' own search, dry ones included: the last wet node below a free surface
+  // stands for its own share of the wall, not for the dry part above it too.
   update_node_weights();
   deactivate_dry_wall_nodes<D>(points_, neighbours_);
   deactivate_wall_nodes_beyond_fluid<D>(points_, neighbours_, options_.free_surface);
@@ -648,7 +648,7 @@ void FlowSolver<D>::rebuild_neighbours() {
 template <int D>
 void FlowSolver<D>::update_node_weights() {
   if (options_.wall_node_weights)
-    node_weight_ = wall_node_weights<D>(points_, neighbours_, options_.dx);
+    node_weight_ = wall_node_weights<D>(points_, neighbours_.radius, options_.dx);
   else
     node_weight_.clear();  // every point weight 1
 }

@@ -540,22 +540,35 @@ void update_wall_nodes(PointSet<D>& points, std::span<const WallMesh<D>> walls) 
 }
 
 template <int D>
-std::vector<double> wall_node_weights(const PointSet<D>& points, const Neighbours& nb, double dx) {
-  HM_ASSERT(dx > 0.0, "wall_node_weights: dx {} must be > 0", dx);
+std::vector<double> wall_node_weights(const PointSet<D>& points, double radius, double dx) {
+  HM_ASSERT(dx > 0.0 && radius > 0.0, "wall_node_weights: dx {} and radius {} must be > 0", dx,
+            radius);
   const Index n = points.size();
-  const double h = nb.radius;
-  const double integral = D == 2 ? 2.0 * h / 3.0 : std::numbers::pi * h * h / 7.0;
+  std::vector<Index> wall;  // local wall-node number -> point index
+  std::vector<Vec<D>> position;
+  for (Index i = 0; i < n; ++i)
+    if (points.kind[i] == PointKind::wall) {
+      wall.push_back(i);
+      position.push_back(points.position[i]);
+    }
+  // An own search over the wall nodes alone: the operators' lists have lost the pairs cut
+  // through walls and past a node's back (cut_pairs_through_thin_walls), so on a convex bend
+  // they missed most of the node's own face and its weight came out 4–17× too large.
+  const Neighbours nb = find_neighbours<D>(std::span<const Vec<D>>(position), radius);
+  const double integral = D == 2 ? 2.0 * radius / 3.0 : std::numbers::pi * radius * radius / 7.0;
   const double cell = D == 2 ? dx : dx * dx;
   std::vector<double> w(static_cast<std::size_t>(n), 1.0);
+  const auto count = static_cast<Index>(wall.size());
 #pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    if (points.kind[i] != PointKind::wall) continue;
+  for (Index a = 0; a < count; ++a) {
+    const Index i = wall[a];
     double sum = 1.0;  // W(0): the node itself
-    for (Index j : nb.of(i)) {
-      if (points.kind[j] != PointKind::wall || points.host[j].body != points.host[i].body ||
+    for (Index b : nb.of(a)) {
+      const Index j = wall[b];
+      if (points.host[j].body != points.host[i].body ||
           points.wall_normal[j].dot(points.wall_normal[i]) < -0.5)
         continue;
-      sum += wendland_c2((points.position[j] - points.position[i]).norm() / h);
+      sum += wendland_c2((points.position[j] - points.position[i]).norm() / radius);
     }
     w[i] = integral / (cell * sum);
   }
@@ -628,8 +641,8 @@ template Index add_wall_nodes<2>(PointSet<2>&, const WallMesh<2>&, int, double);
 template Index add_wall_nodes<3>(PointSet<3>&, const WallMesh<3>&, int, double);
 template void update_wall_nodes<2>(PointSet<2>&, std::span<const WallMesh<2>>);
 template void update_wall_nodes<3>(PointSet<3>&, std::span<const WallMesh<3>>);
-template std::vector<double> wall_node_weights<2>(const PointSet<2>&, const Neighbours&, double);
-template std::vector<double> wall_node_weights<3>(const PointSet<3>&, const Neighbours&, double);
+template std::vector<double> wall_node_weights<2>(const PointSet<2>&, double, double);
+template std::vector<double> wall_node_weights<3>(const PointSet<3>&, double, double);
 template std::int64_t cut_pairs_through_thin_walls<2>(Neighbours&, const PointSet<2>&,
                                                       std::span<const WallMesh<2>>);
 template std::int64_t cut_pairs_through_thin_walls<3>(Neighbours&, const PointSet<3>&,

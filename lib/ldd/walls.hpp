@@ -113,13 +113,14 @@ void update_wall_nodes(PointSet<D>& points, std::span<const WallMesh<D>> walls);
 /// a wall node the wall measure it stands for in units of dx^(D−1), ω_i = ∫W dS / (dx^(D−1)
 /// Σ_j W_ij) over the wall nodes j of its body not on its other side (i included, n_i·n_j ≥ −1/2:
 /// the adjacent face at a corner or an edge counts, so the weight stays ≈ 1 there at spacing dx),
-/// ∫W dS = 2h/3 (2-D) or πh²/7 (3-D): ≈ 1 at spacing dx, s/dx at spacing s < dx. Without it a
-/// wall sampled at dx/32 outweighed its fluid 20:1 in the moment matrix of its nodes, which
-/// then counted as degenerate (λ_min(M) < λ_c) and were regularised; n·∇p of their Neumann rows
-/// came out at half its value and the added mass of a wall at +80 %.
+/// ∫W dS = 2h/3 (2-D) or πh²/7 (3-D), h = radius [m], the sum over every wall node within h
+/// (its own search, not the operators' lists, which have lost the pairs cut through walls): ≈ 1 at
+/// spacing dx, s/dx at spacing s < dx. Without it a wall sampled at dx/32 outweighed its fluid 20:1
+/// in the moment matrix of its nodes, which then counted as degenerate (λ_min(M) < λ_c) and were
+/// regularised; n·∇p of their Neumann rows came out at half its value and the added mass of a wall
+/// at +80 %.
 template <int D>
-std::vector<double> wall_node_weights(const PointSet<D>& points, const Neighbours& neighbours,
-                                      double dx);
+std::vector<double> wall_node_weights(const PointSet<D>& points, double radius, double dx);
 
 /// Cuts neighbour pairs through walls (§1.5): pairs from any wall node to a point behind it
 /// (r_ij·n_i < 0: the other face of a block or gate thinner than h); pairs whose segment crosses
