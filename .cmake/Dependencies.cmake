@@ -100,3 +100,20 @@ if(HM_BUILD_BENCHMARKS)
   find_package(benchmark QUIET)
   hm_require(benchmark_FOUND libbenchmark-dev "Google Benchmark")
 endif()
+
+# PETSc 3.18 (petsc-dev, built on OpenMPI, with hypre's BoomerAMG inside): the algebraic-
+# multigrid backends of the linear-solver seam (lib/linsolve). Without it (or with HM_PETSC=OFF)
+# the build has the native solvers only, and a scene asking for boomeramg or gamg is refused.
+# petsc.h includes mpi.h, whose headers the .pc file does not name: MPI's C target adds them.
+set(HM_WITH_PETSC FALSE)
+if(HM_PETSC)
+  pkg_check_modules(PETSC QUIET IMPORTED_TARGET petsc)
+  find_package(MPI QUIET COMPONENTS C)
+  if(PETSC_FOUND AND MPI_C_FOUND)
+    set(HM_WITH_PETSC TRUE)
+    message(STATUS "hydromodal: PETSc ${PETSC_VERSION} found: the boomeramg and gamg solvers are built")
+  else()
+    message(STATUS "hydromodal: PETSc not found (Debian: petsc-dev, openmpi-bin): "
+                   "only the jacobi and ilu solvers are built")
+  endif()
+endif()

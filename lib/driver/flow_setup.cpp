@@ -10,6 +10,7 @@
 #include "core/text.hpp"
 #include "driver/wall_io.hpp"
 #include "ldd/seeding.hpp"
+#include "linsolve/linear_solver.hpp"
 #include "mesh/wall_mesher.hpp"
 #include "motion/time_table.hpp"
 
@@ -202,6 +203,28 @@ ldd::Vec<D> vec_of(const Eigen::VectorXd& v) {
   return v;
 }
 
+/// solver.preconditioner, refused (exit 2) when this build lacks it (the PETSc ones).
+ldd::Preconditioner ppe_preconditioner(const SceneView& solver) {
+  const std::string name = solver.string("preconditioner");
+  for (const auto p :
+       {ldd::Preconditioner::automatic, ldd::Preconditioner::jacobi, ldd::Preconditioner::ilu,
+        ldd::Preconditioner::boomeramg, ldd::Preconditioner::gamg}) {
+    if (name != ldd::to_string(p)) continue;
+    if (!ldd::is_available(p)) {
+      std::string built;
+      for (const auto m : linsolve::available_methods())
+        built += fmt::format(", \"{}\"", linsolve::to_string(m));
+      input_error(
+          "{} = \"{}\" is not built into this hydromodal: it needs PETSc (the Debian package "
+          "petsc-dev, then rebuild). Built in: \"automatic\"{}",
+          solver.where("preconditioner"), name, built);
+    }
+    return p;
+  }
+  input_error("{} = \"{}\": expected automatic, jacobi, ilu, boomeramg or gamg",
+              solver.where("preconditioner"), name);
+}
+
 template <int D>
 ldd::FlowOptions<D> flow_options(const io::Scene& scene) {
   ldd::FlowOptions<D> o;
@@ -226,10 +249,7 @@ ldd::FlowOptions<D> flow_options(const io::Scene& scene) {
   o.release_wall_tension = solver.boolean("release_wall_tension");
   o.ppe.tolerance = solver.number("ppe_tolerance");
   o.ppe.max_iterations = static_cast<int>(solver.integer("ppe_max_iterations"));
-  const std::string pc = solver.string("preconditioner");
-  o.ppe.preconditioner = pc == "jacobi" ? ldd::Preconditioner::jacobi
-                         : pc == "ilu"  ? ldd::Preconditioner::ilu
-                                        : ldd::Preconditioner::automatic;
+  o.ppe.preconditioner = ppe_preconditioner(solver);
   o.cfl = time.number("cfl");
   o.acceleration_number = time.number("acceleration_number");
   o.viscous_number = time.number("viscous_number");

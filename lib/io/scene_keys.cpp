@@ -322,8 +322,14 @@ const std::vector<KeyDecl>& scene_keys() {
       integer("solver.ppe_max_iterations", "1000", 1, 1000000,
               "iterations of the PPE solver before the step counts as not converged",
               simulate_stage),
-      text("solver.preconditioner", "\"automatic\"", {"automatic", "jacobi", "ilu"},
-           "PPE preconditioner: automatic (Jacobi first, ILU when it stalls), jacobi or ilu",
+      text("solver.preconditioner", "\"automatic\"",
+           {"automatic", "jacobi", "ilu", "boomeramg", "gamg"},
+           "PPE solver: BiCGSTAB preconditioned by automatic (2-D in builds with PETSc: BoomerAMG "
+           "for systems of 2000 unknowns or more, Jacobi as its fallback; otherwise Jacobi "
+           "first and ILU when it stalls; the rule is measured, see the README), jacobi, ilu, or "
+           "algebraic multigrid "
+           "from PETSc: boomeramg (hypre) or gamg (smoothed aggregation); the PETSc ones only in "
+           "builds with PETSc (fsi-simulate --version lists them)",
            simulate_stage),
 
       // [[probe]]

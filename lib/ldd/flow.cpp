@@ -8,7 +8,6 @@
 #include <sstream>
 
 #include <fmt/format.h>
-#include <Eigen/IterativeLinearSolvers>
 #include <Eigen/SparseCore>
 
 #include "core/log.hpp"
@@ -110,11 +109,34 @@ FlowDiverged::FlowDiverged(DivergenceReport report)
 // ---------------------------------------------------------------------------------------------
 // Set-up
 
+namespace {
+
+/// `ppe`, once its preconditioner is known to be built in (InputError naming those that are).
+const SolverOptions& available_ppe_options(const SolverOptions& ppe) {
+  if (!is_available(ppe.preconditioner)) {
+    std::string names;
+    for (const auto m : linsolve::available_methods())
+      names += fmt::format(", {}", linsolve::to_string(m));
+    throw InputError(fmt::format(
+        "flow: the PPE preconditioner \"{}\" is not built into this hydromodal (built in: "
+        "automatic{}; the PETSc ones need a build with petsc-dev installed)",
+        to_string(ppe.preconditioner), names));
+  }
+  return ppe;
+}
+
+}  // namespace
+
 template <int D>
 FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>> fluid,
                           std::span<const Vec<D>> velocity, const FlowOptions<D>& options,
                           double t0)
-    : options_(options), walls_(std::move(walls)), time_(t0) {
+    : options_(options),
+      walls_(std::move(walls)),
+      ppe_solver_(available_ppe_options(options.ppe)),
+      viscous_solver_({.primary = linsolve::Method::jacobi},
+                      {.tolerance = 1e-8, .max_iterations = 500}),
+      time_(t0) {
   const auto& o = options_;
   require(o.dx > 0.0, fmt::format("flow: dx = {} m must be > 0", o.dx));
   require(o.density > 0.0, fmt::format("flow: density = {} kg/m³ must be > 0", o.density));
@@ -166,8 +188,8 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
   if (!m.ppe_converged)
     numerical_error(
         "flow: the initial pressure solve did not converge ({} iterations, residual "
-        "{:.3g})",
-        m.ppe_iterations, m.ppe_residual);
+        "{:.3g}; {})",
+        m.ppe_iterations, m.ppe_residual, m.ppe_failure);
 }
 
 template <int D>
@@ -391,11 +413,12 @@ std::vector<double> FlowSolver<D>::acceleration_pressure(std::span<const Vec<D>>
   const auto system = assemble_poisson<D>(points_, neighbours_, ops_, data, options_.dx);
   points_.type = types;
   std::vector<double> pressure(static_cast<std::size_t>(n), 0.0);
-  const auto report = solve_poisson(system, pressure, options_.ppe);
+  const auto report = ppe_solver_.solve(system, pressure);
   if (!report.converged)
     numerical_error(
-        "flow: the added-mass pressure solve did not converge ({} iterations, residual {:.3g})",
-        report.iterations, report.residual);
+        "flow: the added-mass pressure solve did not converge ({} iterations, residual {:.3g}, "
+        "{}: {})",
+        report.iterations, report.residual, to_string(report.preconditioner), report.failure);
   return pressure;
 }
 
@@ -762,21 +785,16 @@ void FlowSolver<D>::solve_implicit_viscosity(double dt, std::vector<Vec<D>>& pre
     entries.emplace_back(r, r, diagonal);
     rhs.row(r) = b.transpose();
   }
-  Eigen::SparseMatrix<double, Eigen::RowMajor> a(m, m);
+  linsolve::CsrMatrix a(m, m);
   a.setFromTriplets(entries.begin(), entries.end());
-  Eigen::BiCGSTAB<Eigen::SparseMatrix<double, Eigen::RowMajor>> solver;
-  solver.setTolerance(1e-8);
-  solver.setMaxIterations(500);
-  solver.compute(a);
+  a.makeCompressed();
   for (int c = 0; c < D; ++c) {
-    Eigen::VectorXd guess(m);
-    for (Index r = 0; r < m; ++r) guess[r] = predicted[point_of[r]][c];
-    const Eigen::VectorXd x = solver.solveWithGuess(rhs.col(c), guess);
-    if (solver.info() != Eigen::Success)
-      numerical_error(
-          "flow: the implicit viscous solve did not converge (component {}, {} "
-          "iterations, error {:.3g})",
-          c, solver.iterations(), solver.error());
+    Eigen::VectorXd x(m);
+    for (Index r = 0; r < m; ++r) x[r] = predicted[point_of[r]][c];
+    const auto report = viscous_solver_.solve(a, rhs.col(c), x);  // one setup, D solves
+    if (!report.converged)
+      numerical_error("flow: the implicit viscous solve did not converge (component {}: {})", c,
+                      report.failure);
     for (Index r = 0; r < m; ++r) predicted[point_of[r]][c] = x[r];
   }
   (void)viscous;
@@ -802,11 +820,15 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
   for (int pass = 0; pass < passes; ++pass) {
     const auto system = assemble_poisson<D>(points_, neighbours_, ops_, data, o.dx);
     lap(t, m.seconds.ppe_assembly);
-    const auto report = solve_poisson(system, points_.pressure, o.ppe);
+    std::vector<double> warm_start;
+    if (ppe_observer_) warm_start = points_.pressure;
+    const auto report = ppe_solver_.solve(system, points_.pressure);
     lap(t, m.seconds.ppe_solve);
-    m.ppe_iterations += report.iterations + report.jacobi_iterations;
+    if (ppe_observer_) ppe_observer_(system, warm_start, report);
+    m.ppe_iterations += report.iterations + report.discarded_iterations;
     m.ppe_residual = report.residual;
     m.ppe_converged = report.converged;
+    m.ppe_failure = report.failure;
     m.ppe_passes = pass + 1;
     if (!report.converged) return;
     // No tension at walls (§0.2 item 6): nodes pulling on the fluid become Dirichlet p = 0.
@@ -1020,8 +1042,8 @@ void FlowSolver<D>::check_divergence(const StepMonitor& m) const {
   if (!m.ppe_converged) {
     r.criterion = fmt::format(
         "the pressure Poisson equation did not converge ({} iterations, residual {:.3g}, "
-        "tolerance {:.3g})",
-        m.ppe_iterations, m.ppe_residual, options_.ppe.tolerance);
+        "tolerance {:.3g}; {})",
+        m.ppe_iterations, m.ppe_residual, options_.ppe.tolerance, m.ppe_failure);
     worst([&](Index i) { return std::abs(points_.pressure[i]); }, "|p| [Pa]");
     throw FlowDiverged(r);
   }

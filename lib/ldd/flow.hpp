@@ -32,6 +32,7 @@
 //  12. monitors: ∇·u after the step, volume from the number density, escaped points.
 // SI units: m, s, kg/m³, Pa (gauge), m²/s.
 #include <array>
+#include <functional>
 #include <span>
 #include <string>
 #include <vector>
@@ -97,7 +98,7 @@ struct FlowOptions {
   double sparse_density = 0.6;
   OperatorOptions operators{.min_dominance = 0.3};
   FreeSurfaceOptions free_surface;  ///< reference_density is set by the solver
-  SolverOptions ppe;
+  SolverOptions ppe = ppe_solver_defaults(D);
   // Time step (§1.11)
   double cfl = 0.3;                   ///< C_u
   double viscous_number = 0.1;        ///< C_ν (explicit viscosity only)
@@ -137,6 +138,7 @@ struct StepMonitor {
   int ppe_passes = 0;  ///< solves (1 + re-solves after releasing wall tension)
   double ppe_residual = 0.0;
   bool ppe_converged = true;
+  std::string ppe_failure;      ///< why the PPE did not converge: solver, reason ("" when it did)
   double max_divergence = 0.0;  ///< max |∇·u^{n+1}| over interior fluid points [1/s]
   /// V/V0 − 1 of the volume the fluid fills (ldd/volume.hpp, the half-density region), V0 the
   /// initial volume scaled by the share of points still in the domain (escaped points carry
@@ -243,6 +245,13 @@ class FlowSolver {
   double reference_density() const { return n0_; }
   /// Velocity gradient (∇u)_ab = ∂u_a/∂x_b per point after the last step [1/s].
   const std::vector<Mat<D>>& velocity_gradient() const { return grad_u_; }
+  /// Called after every PPE solve of a step's projection with the system, the pressure it was
+  /// warm-started from (per point) and the report: for dumping and measuring real PPE matrices.
+  using PpeObserver = std::function<void(
+      const PoissonSystem& system, std::span<const double> warm_start, const SolveReport& report)>;
+  void observe_ppe(PpeObserver observer) { ppe_observer_ = std::move(observer); }
+  /// Setup reuse and fallbacks of the PPE solver over the run so far.
+  linsolve::SystemCounters ppe_counters() const { return ppe_solver_.counters(); }
 
  private:
   void advect(double dt);
@@ -278,6 +287,9 @@ class FlowSolver {
 
   FlowOptions<D> options_;
   std::vector<WallMesh<D>> walls_;
+  PoissonSolver ppe_solver_;               ///< keeps its setup while the matrix does not change
+  linsolve::SystemSolver viscous_solver_;  ///< the implicit viscosity's (§1.10)
+  PpeObserver ppe_observer_;
   PointSet<D> points_;
   Neighbours neighbours_;
   Operators<D> ops_;

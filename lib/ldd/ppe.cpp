@@ -3,10 +3,7 @@
 #include <cmath>
 #include <numeric>
 
-#include <Eigen/IterativeLinearSolvers>
-
 #include "core/errors.hpp"
-#include "ldd/bicgstab.hpp"
 
 namespace hm::ldd {
 namespace {
@@ -126,67 +123,151 @@ PoissonSystem assemble_poisson(PointSet<D>& pts, const Neighbours& nb, const Ope
   return sys;
 }
 
-SolveReport solve_poisson(const PoissonSystem& sys, std::vector<double>& pressure,
-                          const SolverOptions& opt) {
-  using Matrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
+const char* to_string(Preconditioner preconditioner) {
+  switch (preconditioner) {
+    case Preconditioner::jacobi:
+      return "jacobi";
+    case Preconditioner::ilu:
+      return "ilu";
+    case Preconditioner::automatic:
+      return "automatic";
+    case Preconditioner::boomeramg:
+      return "boomeramg";
+    case Preconditioner::gamg:
+      return "gamg";
+  }
+  return "?";
+}
+
+namespace {
+
+linsolve::Method method_of(Preconditioner p) {
+  switch (p) {
+    case Preconditioner::ilu:
+      return linsolve::Method::ilu;
+    case Preconditioner::boomeramg:
+      return linsolve::Method::boomeramg;
+    case Preconditioner::gamg:
+      return linsolve::Method::gamg;
+    case Preconditioner::jacobi:
+    case Preconditioner::automatic:
+      return linsolve::Method::jacobi;
+  }
+  return linsolve::Method::jacobi;
+}
+
+Preconditioner preconditioner_of(linsolve::Method m) {
+  switch (m) {
+    case linsolve::Method::jacobi:
+      return Preconditioner::jacobi;
+    case linsolve::Method::ilu:
+      return Preconditioner::ilu;
+    case linsolve::Method::boomeramg:
+      return Preconditioner::boomeramg;
+    case linsolve::Method::gamg:
+      return Preconditioner::gamg;
+  }
+  return Preconditioner::jacobi;
+}
+
+linsolve::Settings settings_of(const SolverOptions& o) {
+  return {.tolerance = o.tolerance,
+          .max_iterations = o.max_iterations,
+          .ilu_drop = o.ilu_drop,
+          .ilu_fill = o.ilu_fill};
+}
+
+}  // namespace
+
+bool is_available(Preconditioner p) {
+  return p == Preconditioner::automatic || linsolve::is_available(method_of(p));
+}
+
+SolverOptions ppe_solver_defaults(int dimension) {
+  HM_ASSERT(dimension == 2 || dimension == 3, "dimension {}", dimension);
+  SolverOptions o;
+  o.amg_unknowns = dimension == 2 ? 2000 : 0;
+  return o;
+}
+
+linsolve::Strategy solver_strategy(const SolverOptions& o, Index unknowns) {
+  linsolve::Strategy s;
+  s.primary = method_of(o.preconditioner);
+  s.reuse = o.reuse;
+  if (o.preconditioner != Preconditioner::automatic) return s;
+  const bool amg = o.amg_unknowns > 0 && unknowns >= o.amg_unknowns &&
+                   linsolve::is_available(linsolve::Method::boomeramg);
+  s.primary = amg ? linsolve::Method::boomeramg : linsolve::Method::jacobi;
+  s.fallback = amg ? linsolve::Method::jacobi : linsolve::Method::ilu;
+  return s;
+}
+
+PoissonSolver::PoissonSolver(const SolverOptions& options) : options_(options) {
+  HM_ASSERT(is_available(options.preconditioner), "PPE preconditioner {} is not built in",
+            to_string(options.preconditioner));
+}
+
+linsolve::SystemSolver& PoissonSolver::solver_for(Index unknowns) {
+  const auto strategy = solver_strategy(options_, unknowns);
+  const bool large = options_.preconditioner == Preconditioner::automatic &&
+                     strategy.primary == linsolve::Method::boomeramg;
+  auto& solver = large ? large_ : small_;
+  if (!solver) solver = std::make_unique<linsolve::SystemSolver>(strategy, settings_of(options_));
+  return *solver;
+}
+
+linsolve::SystemCounters PoissonSolver::counters() const {
+  linsolve::SystemCounters sum;
+  for (const auto* s : {small_.get(), large_.get()}) {
+    if (s == nullptr) continue;
+    const auto& c = s->counters();
+    sum.solves += c.solves;
+    sum.setups += c.setups;
+    sum.identical_reuses += c.identical_reuses;
+    sum.stale_reuses += c.stale_reuses;
+    sum.rebuilds_after_growth += c.rebuilds_after_growth;
+    sum.fallbacks += c.fallbacks;
+  }
+  return sum;
+}
+
+SolveReport PoissonSolver::solve(const PoissonSystem& sys, std::vector<double>& pressure) {
   const auto m = static_cast<Index>(sys.point_of.size());
   HM_ASSERT(pressure.size() == sys.unknown_of.size(), "pressure has {} values for {} points",
             pressure.size(), sys.unknown_of.size());
   SolveReport rep;
   rep.unknowns = m;
   rep.nonzeros = sys.matrix.nonZeros();
-  Eigen::VectorXd guess(m);
-  for (Index r = 0; r < m; ++r) guess[r] = pressure[sys.point_of[r]];
-  Eigen::VectorXd x;
-  auto run = [&](auto& solver) {
-    rep.iterations = 0;
-    rep.residual = 0.0;
-    solver.setTolerance(opt.tolerance);
-    solver.setMaxIterations(opt.max_iterations);
-    solver.compute(sys.matrix);
-    if (solver.info() != Eigen::Success) {
-      rep.converged = false;
-      return;
-    }
-    x = solver.solveWithGuess(sys.rhs, guess);
-    rep.iterations = static_cast<int>(solver.iterations());
-    rep.residual = solver.error();
-    rep.converged = solver.info() == Eigen::Success && x.allFinite();
-  };
-  auto solve_with = [&](Preconditioner pre) {
-    rep.preconditioner = pre;
-    if (pre == Preconditioner::ilu) {
-      Eigen::BiCGSTAB<Matrix, Eigen::IncompleteLUT<double, int>> solver;
-      solver.preconditioner().setDroptol(opt.ilu_drop);
-      solver.preconditioner().setFillfactor(opt.ilu_fill);
-      run(solver);
-    } else {
-      // The rows are scaled to a unit diagonal: Jacobi is the identity (ldd/bicgstab.hpp).
-      x = guess;
-      const auto r = bicgstab(sys.matrix, sys.rhs, x, opt.tolerance, opt.max_iterations);
-      rep.iterations = r.iterations;
-      rep.residual = r.residual;
-      rep.converged = r.converged && x.allFinite();
-    }
-  };
+  auto& solver = solver_for(m);
+  rep.preconditioner = preconditioner_of(solver.strategy().primary);
+  Eigen::VectorXd x(m);
+  for (Index r = 0; r < m; ++r) x[r] = pressure[sys.point_of[r]];
   if (m == 0) {
     rep.converged = true;
-    rep.preconditioner =
-        opt.preconditioner == Preconditioner::ilu ? Preconditioner::ilu : Preconditioner::jacobi;
-  } else if (opt.preconditioner == Preconditioner::automatic) {
-    solve_with(Preconditioner::jacobi);
-    if (!rep.converged) {
-      rep.jacobi_iterations = rep.iterations;
-      x.resize(0);
-      solve_with(Preconditioner::ilu);
-    }
   } else {
-    solve_with(opt.preconditioner);
+    const auto r = solver.solve(sys.matrix, sys.rhs, x);
+    rep.converged = r.converged;
+    rep.preconditioner = preconditioner_of(r.method);
+    rep.iterations = r.iterations;
+    rep.discarded_iterations = r.discarded_iterations;
+    rep.residual = r.residual;
+    rep.setup = r.setup;
+    rep.setup_seconds = r.setup_seconds;
+    rep.solve_seconds = r.solve_seconds;
+    rep.failure = r.failure;
   }
+  // A failed solve leaves the warm start in place (never a partial or non-finite iterate).
+  const bool use = rep.converged || x.allFinite();
   for (std::size_t i = 0; i < pressure.size(); ++i)
-    pressure[i] = sys.unknown_of[i] >= 0 ? (x.size() == m ? x[sys.unknown_of[i]] : pressure[i])
-                                         : sys.dirichlet[i];
+    pressure[i] =
+        sys.unknown_of[i] >= 0 ? (use ? x[sys.unknown_of[i]] : pressure[i]) : sys.dirichlet[i];
   return rep;
+}
+
+SolveReport solve_poisson(const PoissonSystem& sys, std::vector<double>& pressure,
+                          const SolverOptions& opt) {
+  PoissonSolver solver(opt);
+  return solver.solve(sys, pressure);
 }
 
 template <int D>

@@ -8,16 +8,20 @@
 //    value (a closed box) is singular: one interior point is pinned to p = 0.
 //  * the PPE sources of the projection: s_i = (ρ/Δt) ∇·u*_i − α (ρ/Δt²)(n_i − n_0)/n_0 (the
 //    volume term only at full-stencil points), q_i = ρ n_i·(g + ν∇²u − A^w)_i.
-// Solved with BiCGSTAB and a Jacobi or ILU preconditioner (by default Jacobi with an ILU
-// fallback, see Preconditioner): Jacobi, which the unit diagonal makes the identity, by the
-// OpenMP BiCGSTAB of ldd/bicgstab.hpp; ILU by Eigen's BiCGSTAB with IncompleteLUT. Warm-started
-// from the previous pressure; iterations and residual are returned, not thrown.
+// Solved through the linear-solver seam (linsolve/): BiCGSTAB with Jacobi, which the unit
+// diagonal makes the identity (the OpenMP BiCGSTAB of linsolve/bicgstab.hpp), ILU (Eigen's
+// IncompleteLUT) or algebraic multigrid (PETSc: BoomerAMG, GAMG); by default Jacobi with an ILU
+// fallback (see Preconditioner). Warm-started from the previous pressure; iterations and
+// residual are returned, not thrown.
+#include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/SparseCore>
 
 #include "ldd/operators.hpp"
+#include "linsolve/system_solver.hpp"
 
 namespace hm::ldd {
 
@@ -44,6 +48,7 @@ template <int D>
 PoissonSystem assemble_poisson(PointSet<D>& points, const Neighbours& neighbours,
                                const Operators<D>& ops, const PoissonData& data, double dx);
 
+/// The PPE's linear solver (linsolve/linear_solver.hpp has the backends).
 /// automatic: Jacobi, and ILU (IncompleteLUT) from the same warm start only if Jacobi does not
 /// converge within max_iterations. Measured on hydrostatic tanks (Release, cold start, tol 1e-6;
 /// tests/benchmarks/ldd BM_PpeIterations / BM_PpeSolve): Jacobi needs 5–10× more iterations but
@@ -52,7 +57,14 @@ PoissonSystem assemble_poisson(PointSet<D>& points, const Neighbours& neighbours
 /// 290 / 3420 / 21 506 ms. IncompleteLUT factorises serially and its cost grows with the row
 /// length (3-D rows hold ~60 entries). Eigen has no ILU(0), and IncompleteCholesky needs a
 /// symmetric matrix, which the Neumann rows are not.
-enum class Preconditioner : std::uint8_t { jacobi, ilu, automatic };
+/// boomeramg, gamg: PETSc's BiCGSTAB with algebraic multigrid (builds with PETSc only), no
+/// fallback: their failure is the solve's.
+enum class Preconditioner : std::uint8_t { jacobi, ilu, automatic, boomeramg, gamg };
+
+/// "jacobi", "ilu", "automatic", "boomeramg", "gamg".
+const char* to_string(Preconditioner preconditioner);
+/// Whether this build can solve with `preconditioner` (boomeramg and gamg need PETSc).
+bool is_available(Preconditioner preconditioner);
 
 struct SolverOptions {
   Preconditioner preconditioner = Preconditioner::automatic;
@@ -60,22 +72,70 @@ struct SolverOptions {
   int max_iterations = 1000;
   double ilu_drop = 1e-4;  ///< IncompleteLUT drop tolerance
   int ilu_fill = 2;        ///< IncompleteLUT fill factor
+  /// automatic, in builds with PETSc: BoomerAMG (Jacobi as its fallback) for systems of at
+  /// least this many unknowns; 0: never. The flow's default is measured per dimension:
+  /// ppe_solver_defaults.
+  Index amg_unknowns = 0;
+  /// Setups are always reused for an unchanged matrix; across_steps keeps a preconditioner
+  /// for changed matrices of the same size too (linsolve::SystemSolver).
+  linsolve::ReusePolicy reuse;
 };
+
+/// The flow solver's PPE options in `dimension` D: automatic with BoomerAMG from 2 000 unknowns
+/// in 2-D and never in 3-D. Measured over whole runs of the collapsing dam break on 1 thread
+/// (bench_flow BM_PpeBreakEven<D>, each row one run of the benchmark), PPE seconds a step,
+/// Jacobi against BoomerAMG with a setup every step: 2-D 3.3 / 3.9 ms at 1.45 k points (65
+/// against 4.9 iterations), 8.4 / 7.1 ms at 2.7 k, 24 / 14 at 5.4 k, 64 / 28 at 10.4 k,
+/// 173 / 59 at 20.8 k (232 against 5.6): even near 2 k. 3-D, where the run's warm start leaves
+/// Jacobi 75–126 iterations and the AMG setup costs more per row (75 entries a row against 21):
+/// 25 / 36 ms at 4 k points, 99 / 151 at 13.5 k, 315 / 434 at 32 k, 608 / 768 at 96 k
+/// (BM_DamBreak3D): Jacobi wins.
+SolverOptions ppe_solver_defaults(int dimension);
+
+/// The linear-solver strategy (primary, fallback, reuse) that `options` stand for on a system
+/// of `unknowns` unknowns.
+linsolve::Strategy solver_strategy(const SolverOptions& options, Index unknowns);
 
 struct SolveReport {
   bool converged = false;
   /// The preconditioner of the returned solution (never automatic); automatic → ilu means
   /// Jacobi did not converge and its iterations are not counted in `iterations`.
   Preconditioner preconditioner = Preconditioner::jacobi;
-  int jacobi_iterations = 0;  ///< automatic: iterations spent in the Jacobi attempt
+  /// Iterations of solves thrown away: the failed Jacobi attempt of automatic, a solve on a
+  /// preconditioner kept from an earlier matrix that had grown too costly.
+  int discarded_iterations = 0;
   int iterations = 0;
   double residual = 0.0;  ///< relative residual of the scaled system
   Index unknowns = 0;
   std::int64_t nonzeros = 0;
+  bool setup = false;          ///< the preconditioner was set up for this solve
+  double setup_seconds = 0.0;  ///< of that setup [s]
+  double solve_seconds = 0.0;  ///< of the iterations [s]
+  std::string failure;         ///< why it did not converge ("" when it did)
 };
 
-/// Solves the system; `pressure` (one value per point) is the warm start and receives the
-/// solution, with the Dirichlet values at Dirichlet points and 0 at inactive ones.
+/// The PPE's solver over a run: one setup serves every solve of an unchanged matrix (the
+/// strong-coupling re-solves, the per-mode added-mass solves), see linsolve::SystemSolver.
+class PoissonSolver {
+ public:
+  explicit PoissonSolver(const SolverOptions& options = {});
+  /// Solves the system; `pressure` (one value per point) is the warm start and receives the
+  /// solution, with the Dirichlet values at Dirichlet points and 0 at inactive ones.
+  SolveReport solve(const PoissonSystem& system, std::vector<double>& pressure);
+  const SolverOptions& options() const { return options_; }
+  /// Over every solve so far.
+  linsolve::SystemCounters counters() const;
+
+ private:
+  linsolve::SystemSolver& solver_for(Index unknowns);
+
+  SolverOptions options_;
+  /// Made on first use: the one of the options, or automatic's below amg_unknowns (Jacobi) …
+  std::unique_ptr<linsolve::SystemSolver> small_;
+  std::unique_ptr<linsolve::SystemSolver> large_;  ///< … and from amg_unknowns on (BoomerAMG)
+};
+
+/// One solve with a solver of its own (no setup kept): PoissonSolver(options).solve(...).
 SolveReport solve_poisson(const PoissonSystem& system, std::vector<double>& pressure,
                           const SolverOptions& options = {});
 

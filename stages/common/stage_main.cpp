@@ -51,6 +51,7 @@ int run_stage(int argc, char** argv, const StageInfo& info,
   }
   if (version) {
     std::cout << info.name << " " << tool_version() << "\n";
+    if (!info.version_details.empty()) std::cout << info.version_details << "\n";
     return 0;
   }
   if (print_reference) {

@@ -24,6 +24,7 @@ struct StageInfo {
   bool has_output = true;  ///< -o/--output FILE
   bool has_validate = true;
   std::vector<std::pair<std::string, std::string>> flags;  ///< extra boolean flags → help
+  std::string version_details;  ///< more lines for --version (what the build provides)
 };
 
 struct StageArgs {

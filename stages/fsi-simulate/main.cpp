@@ -7,6 +7,7 @@
 // needs a [structure]).
 #include "driver/simulate_stage.hpp"
 #include "io/artefact.hpp"
+#include "linsolve/linear_solver.hpp"
 #include "stage_main.hpp"
 
 namespace {
@@ -48,6 +49,14 @@ void simulate(const hm::stages::StageArgs& args) {
 
 }  // namespace
 
+/// The PPE solvers of this build (solver.preconditioner), for --version.
+std::string solver_list() {
+  std::string list = "PPE solvers (solver.preconditioner): automatic";
+  for (const auto m : hm::linsolve::available_methods())
+    list += std::string(", ") + hm::linsolve::to_string(m);
+  return list;
+}
+
 int main(int argc, char** argv) {
   const hm::stages::StageInfo info{
       .name = name,
@@ -74,6 +83,7 @@ int main(int argc, char** argv) {
                  "run only if the output is missing or stale: written by another tool version, "
                  "with other scene parameters, or from inputs whose content changed (content "
                  "hashes decide, not timestamps)"}},
+      .version_details = solver_list(),
   };
   return hm::stages::run_stage(argc, argv, info, simulate);
 }

@@ -36,7 +36,7 @@ struct Piston {
 /// The piston at x = L (normal −x into the fluid) from the floor to 1.5 H; the tank's floor runs
 /// on under it so that it slides on the floor.
 inline Piston piston(double dx, double mass_ratio, double wet_frequency_hz, CouplingScheme scheme,
-                     bool release_wall_tension = true) {
+                     bool release_wall_tension = true, long added_mass_interval = 20) {
   mesh::WallOptions o;
   o.dim = 2;
   o.size = 4 * dx;
@@ -66,6 +66,7 @@ inline Piston piston(double dx, double mass_ratio, double wet_frequency_hz, Coup
   CouplingOptions co;
   co.scheme = scheme;
   co.tolerance = 1e-4;
+  co.added_mass_interval = added_mass_interval;
 
   ldd::FlowOptions<2> fo;
   fo.dx = dx;

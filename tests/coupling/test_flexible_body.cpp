@@ -89,6 +89,35 @@ TEST(FlexibleBody, StrongCouplingGivesTheWetFrequencyOfALightPiston) {
   for (const auto& [t, v] : y) EXPECT_LT(std::abs(v), 2.2 * static_offset) << "t = " << t;
 }
 
+// A strong-coupling step assembles one PPE matrix and re-solves it for every sub-iteration and
+// for the added-mass measurement (one right-hand side per mode): one preconditioner setup must
+// serve them all (linsolve::SystemSolver's identical-matrix reuse), on every backend.
+TEST(FlexibleBody, StrongCouplingStepDoesOnePpeSetupForAllItsSolves) {
+  for (const auto pre : {ldd::Preconditioner::automatic, ldd::Preconditioner::boomeramg}) {
+    if (!ldd::is_available(pre)) continue;
+    Piston p = piston(H / 10, 10.0, 10.0, CouplingScheme::strong, /*release_wall_tension=*/false,
+                      /*added_mass_interval=*/1);
+    p.bodies[0].start(*p.flow);
+    std::vector<CouplingMonitor> monitors;
+    const auto before = p.flow->ppe_counters();
+    const int steps = 8;
+    long sub_iterations = 0;
+    for (int s = 0; s < steps; ++s) {
+      coupled_step<2>(*p.flow, p.bodies, p.flow->stable_dt(p.bodies[0].max_speed()).first,
+                      monitors);
+      sub_iterations += monitors[0].iterations;
+    }
+    const auto after = p.flow->ppe_counters();
+    const long setups = after.setups - before.setups;
+    const long solves = after.solves - before.solves;
+    std::printf("%s: %d strong steps, %ld sub-iterations, %ld PPE solves, %ld setups\n",
+                ldd::to_string(pre), steps, sub_iterations, solves, setups);
+    EXPECT_GT(sub_iterations, steps) << "the steps must iterate for the test to mean anything";
+    EXPECT_EQ(solves, sub_iterations + steps) << "one added-mass solve (one mode) per step";
+    EXPECT_EQ(setups, steps) << ldd::to_string(pre);
+  }
+}
+
 // Starting from the static solution (structure.static_start) the piston stays at its static
 // offset under the hydrostatic load instead of swinging through twice it.
 TEST(FlexibleBody, StaticStartHoldsThePistonAtItsStaticOffset) {

@@ -1,7 +1,10 @@
 // Flow solver throughput: particle-steps per second (points × steps / wall time) of a dam break,
 // 2-D with about 20 000 points and 3-D with about 100 000, on 1 and 2 threads, with the share of
-// each phase of the step. The dam break is run to t√(g/H) = 0.5 first (the column collapsing, so that
-// the timed steps are not those of water at rest), then a fixed number of steps is timed.
+// each phase of the step. The dam break is run to t√(g/H) = 0.5 first (the column collapsing, so
+// that the timed steps are not those of water at rest), then a fixed number of steps is timed.
+//   BM_DamBreak<D>/<threads>/<ppe>   ppe 0: Jacobi (automatic's solver below amg_unknowns),
+//                                    1: BoomerAMG (builds with PETSc only), 2: BoomerAMG kept
+//                                    across steps (ReusePolicy::across_steps)
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -11,7 +14,7 @@ namespace hm::ldd {
 namespace {
 
 template <int D>
-FlowSolver<D> dam_break(double dx) {
+FlowSolver<D> dam_break(double dx, int ppe) {
   // Column H × 2H (H = 0.3 m) in a tank 4H long; 3-D: 0.15 m wide (Lobovsky-like).
   Vec<D> size, column;
   size[0] = 1.2;
@@ -23,22 +26,30 @@ FlowSolver<D> dam_break(double dx) {
   size[D - 1] = 0.6;
   column[D - 1] = 0.3;
   const Box<D> fluid{Vec<D>::Zero(), column};
-  std::vector<std::string> faces = D == 2 ? std::vector<std::string>{"xmin", "xmax", "ymin"}
-                                          : std::vector<std::string>{"xmin", "xmax", "ymin",
-                                                                     "ymax", "zmin"};
+  std::vector<std::string> faces =
+      D == 2 ? std::vector<std::string>{"xmin", "xmax", "ymin"}
+             : std::vector<std::string>{"xmin", "xmax", "ymin", "ymax", "zmin"};
   std::vector<WallMesh<D>> walls;
   walls.push_back(test::box_tank<D>(size, 4 * dx, faces));
   FlowOptions<D> o;
   o.dx = dx;
   o.gravity[D - 1] = -9.81;
+  o.ppe.amg_unknowns = 0;  // automatic = Jacobi, ILU when it stalls
+  if (ppe > 0) o.ppe.preconditioner = Preconditioner::boomeramg;
+  o.ppe.reuse.across_steps = ppe == 2;
   auto x = seed_box<D>(fluid, dx, walls);
   return FlowSolver<D>(std::move(walls), x, {}, o);
 }
 
 template <int D>
-void BM_DamBreak(benchmark::State& state, double dx, int steps) {
-  omp_set_num_threads(static_cast<int>(state.range(0)));
-  auto flow = dam_break<D>(dx);
+void BM_DamBreak(benchmark::State& state, double dx, int steps, int threads, int ppe) {
+  omp_set_num_threads(threads);
+  const bool amg = ppe > 0;
+  if (amg && !is_available(Preconditioner::boomeramg)) {
+    state.SkipWithError("built without PETSc");
+    return;
+  }
+  auto flow = dam_break<D>(dx, ppe);
   const double settle = 0.5 / std::sqrt(9.81 / 0.3);  // t√(g/H) = 0.5
   while (flow.time() < settle) flow.step(flow.stable_dt(0.0).first);
   PhaseSeconds phases;
@@ -54,9 +65,11 @@ void BM_DamBreak(benchmark::State& state, double dx, int steps) {
     }
   }
   const double total = phases.total();
+  state.SetLabel(ppe == 0 ? "jacobi" : ppe == 1 ? "boomeramg" : "boomeramg, kept across steps");
   state.counters["points"] = points / total_steps;
   state.counters["particle_steps_per_s"] = points / total;
   state.counters["ppe_iterations"] = iterations / total_steps;
+  state.counters["ppe_solve_s_per_step"] = phases.ppe_solve / static_cast<double>(total_steps);
   auto share = [&](const char* name, double seconds) { state.counters[name] = seconds / total; };
   share("advect", phases.advect);
   share("pbd", phases.pbd);
@@ -70,11 +83,50 @@ void BM_DamBreak(benchmark::State& state, double dx, int steps) {
 }
 
 // 2-D: dx = 3 mm → 20 000 fluid points; 3-D: dx = 7.8 mm → ~98 000 (+ wall nodes).
-void BM_DamBreak2D(benchmark::State& state) { BM_DamBreak<2>(state, 0.003, 40); }
-void BM_DamBreak3D(benchmark::State& state) { BM_DamBreak<3>(state, 0.0078, 5); }
+void BM_DamBreak2D(benchmark::State& state) {
+  BM_DamBreak<2>(state, 0.003, 40, static_cast<int>(state.range(0)),
+                 static_cast<int>(state.range(1)));
+}
+void BM_DamBreak3D(benchmark::State& state) {
+  BM_DamBreak<3>(state, 0.0078, 5, static_cast<int>(state.range(0)),
+                 static_cast<int>(state.range(1)));
+}
+// Where BoomerAMG starts to beat Jacobi over a run (the automatic rule, SolverOptions::
+// amg_unknowns): the dam break on 1 thread, 2-D at 1 250 … 20 000 fluid points (40 steps),
+// 3-D at 4 000 … 32 000 (10 steps).
+//   BM_PpeBreakEven<D>/<fluid points>/<ppe>
+template <int D>
+void BM_PpeBreakEven(benchmark::State& state) {
+  const auto points = static_cast<double>(state.range(0));
+  const double dx = D == 2 ? std::sqrt(0.18 / points) : std::cbrt(0.027 / points);
+  BM_DamBreak<D>(state, dx, D == 2 ? 40 : 10, 1, static_cast<int>(state.range(1)));
+}
 
-BENCHMARK(BM_DamBreak2D)->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
-BENCHMARK(BM_DamBreak3D)->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+void threads_and_ppe(benchmark::internal::Benchmark* b) {
+  for (int ppe = 0; ppe < 3; ++ppe)
+    for (int threads = 1; threads <= 2; ++threads) b->Args({threads, ppe});
+}
+
+BENCHMARK(BM_DamBreak2D)
+    ->Apply(threads_and_ppe)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
+BENCHMARK(BM_DamBreak3D)
+    ->Apply(threads_and_ppe)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
+BENCHMARK(BM_PpeBreakEven<2>)
+    ->ArgsProduct({{1250, 2500, 5000, 10000, 20000}, {0, 1, 2}})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
+BENCHMARK(BM_PpeBreakEven<3>)
+    ->ArgsProduct({{4000, 13500, 32000}, {0, 1, 2}})
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace hm::ldd

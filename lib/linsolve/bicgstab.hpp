@@ -8,7 +8,7 @@
 // schedules, so a run is reproducible for a given thread count.
 #include <Eigen/SparseCore>
 
-namespace hm::ldd {
+namespace hm::linsolve {
 
 struct BicgstabResult {
   bool converged = false;
@@ -22,4 +22,4 @@ BicgstabResult bicgstab(const Eigen::SparseMatrix<double, Eigen::RowMajor, int>&
                         const Eigen::VectorXd& b, Eigen::VectorXd& x, double tolerance,
                         int max_iterations);
 
-}  // namespace hm::ldd
+}  // namespace hm::linsolve

@@ -1,9 +1,9 @@
-#include "ldd/bicgstab.hpp"
+#include "linsolve/bicgstab.hpp"
 
 #include <cmath>
 #include <limits>
 
-namespace hm::ldd {
+namespace hm::linsolve {
 namespace {
 
 using Matrix = Eigen::SparseMatrix<double, Eigen::RowMajor, int>;
@@ -91,4 +91,4 @@ BicgstabResult bicgstab(const Matrix& a, const Eigen::VectorXd& b, Eigen::Vector
   return out;
 }
 
-}  // namespace hm::ldd
+}  // namespace hm::linsolve

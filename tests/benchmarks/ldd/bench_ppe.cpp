@@ -1,0 +1,206 @@
+// The PPE's linear solvers on real PPE matrices: the systems a dam break assembles (a column
+// H × 2H, H = 0.3 m, in a tank 4H long; 3-D 0.15 m wide), taken from the flow solver's own
+// projection (FlowSolver::observe_ppe) a few steps after release, 2-D from 10 k to 1 M points
+// and 3-D from 27 k to 500 k. For each backend: setup and solve seconds, iterations from a cold
+// start (x = 0) and from the run's warm start, at the runs' tolerance (1e-6), and the relative
+// residual recomputed from the matrix, independently of the solver ("true_residual").
+//   BM_PpeSolve/<D>/<size>/<method>   method 0 jacobi, 1 ilu, 2 boomeramg, 3 gamg
+//   BM_PpeReuse/<policy>              60 steps of the collapsing 2-D column (~40 k points):
+//                                     0 a setup every step, 1 reuse across steps (growth 1.3)
+// The machine's two cores: the native solvers run on OMP_NUM_THREADS threads, PETSc on one.
+#include <benchmark/benchmark.h>
+#include <fmt/format.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "flow_cases.hpp"
+#include "linsolve/linear_solver.hpp"
+
+namespace hm::ldd {
+namespace {
+
+template <int D>
+FlowSolver<D> dam_break(double dx, Preconditioner preconditioner, linsolve::ReusePolicy reuse) {
+  Vec<D> size, column;
+  size[0] = 1.2;
+  column[0] = 0.6;
+  if constexpr (D == 3) {
+    size[1] = 0.15;
+    column[1] = 0.15;
+  }
+  size[D - 1] = 0.6;
+  column[D - 1] = 0.3;
+  const Box<D> fluid{Vec<D>::Zero(), column};
+  std::vector<std::string> faces =
+      D == 2 ? std::vector<std::string>{"xmin", "xmax", "ymin"}
+             : std::vector<std::string>{"xmin", "xmax", "ymin", "ymax", "zmin"};
+  std::vector<WallMesh<D>> walls;
+  walls.push_back(test::box_tank<D>(size, 4 * dx, faces));
+  FlowOptions<D> o;
+  o.dx = dx;
+  o.gravity[D - 1] = -9.81;
+  o.ppe.preconditioner = preconditioner;
+  o.ppe.reuse = reuse;
+  auto x = seed_box<D>(fluid, dx, walls);
+  return FlowSolver<D>(std::move(walls), x, {}, o);
+}
+
+/// A PPE system of a real run and the pressure the run warm-started it from.
+struct Captured {
+  linsolve::CsrMatrix matrix;
+  Eigen::VectorXd rhs, warm_start;
+  Index points = 0;
+};
+
+/// Fluid points of the column: 0.18 m² / dx² (2-D), 0.027 m³ / dx³ (3-D).
+template <int D>
+double spacing_for(double points) {
+  return D == 2 ? std::sqrt(0.18 / points) : std::cbrt(0.027 / points);
+}
+
+constexpr double kSizes2D[] = {1e4, 4e4, 1.6e5, 6.4e5, 1e6};
+constexpr double kSizes3D[] = {2.7e4, 1.25e5, 5e5};
+
+/// The matrix as MatrixMarket coordinate real general (1-based), the right-hand side after it
+/// as a second "array" block in the same file.
+void write_matrix_market(const std::string& path, const linsolve::CsrMatrix& a,
+                         const Eigen::VectorXd& b) {
+  std::FILE* f = std::fopen(path.c_str(), "w");
+  if (f == nullptr) return;
+  std::fprintf(f, "%%%%MatrixMarket matrix coordinate real general\n%ld %ld %ld\n",
+               static_cast<long>(a.rows()), static_cast<long>(a.cols()),
+               static_cast<long>(a.nonZeros()));
+  for (Eigen::Index r = 0; r < a.rows(); ++r)
+    for (linsolve::CsrMatrix::InnerIterator it(a, r); it; ++it)
+      std::fprintf(f, "%ld %ld %.17g\n", static_cast<long>(r + 1), static_cast<long>(it.col() + 1),
+                   it.value());
+  std::fprintf(f, "%%%%MatrixMarket matrix array real general\n%ld 1\n",
+               static_cast<long>(b.size()));
+  for (Eigen::Index r = 0; r < b.size(); ++r) std::fprintf(f, "%.17g\n", b[r]);
+  std::fclose(f);
+}
+
+template <int D>
+const Captured& captured(int size_index) {
+  static std::map<int, std::unique_ptr<Captured>> cache;
+  auto& c = cache[size_index];
+  if (c) return *c;
+  c = std::make_unique<Captured>();
+  const double points = D == 2 ? kSizes2D[size_index] : kSizes3D[size_index];
+  // The run itself on BoomerAMG where PETSc is built in (the fastest way to the state).
+  const auto pre = linsolve::is_available(linsolve::Method::boomeramg) ? Preconditioner::boomeramg
+                                                                       : Preconditioner::automatic;
+  auto flow = dam_break<D>(spacing_for<D>(points), pre, {});
+  Captured* out = c.get();
+  flow.observe_ppe([out](const PoissonSystem& s, std::span<const double> warm, const SolveReport&) {
+    out->matrix = s.matrix;
+    out->rhs = s.rhs;
+    out->warm_start.resize(static_cast<Eigen::Index>(s.point_of.size()));
+    for (std::size_t r = 0; r < s.point_of.size(); ++r)
+      out->warm_start[static_cast<Eigen::Index>(r)] = warm[static_cast<std::size_t>(s.point_of[r])];
+  });
+  for (int s = 0; s < 3; ++s) flow.step(flow.stable_dt(0.0).first);
+  c->points = flow.points().size();
+  if (const char* dir = std::getenv("HM_PPE_DUMP"))  // for experiments with other tools
+    write_matrix_market(fmt::format("{}/ppe_{}d_{}.mtx", dir, D, size_index), c->matrix, c->rhs);
+  return *c;
+}
+
+constexpr linsolve::Method kMethods[] = {linsolve::Method::jacobi, linsolve::Method::ilu,
+                                         linsolve::Method::boomeramg, linsolve::Method::gamg};
+
+template <int D>
+void BM_PpeSolve(benchmark::State& state) {
+  const auto method = kMethods[state.range(1)];
+  if (!linsolve::is_available(method)) {
+    state.SkipWithError("not built in");
+    return;
+  }
+  const Captured& c = captured<D>(static_cast<int>(state.range(0)));
+  const linsolve::Settings settings{.tolerance = 1e-6, .max_iterations = 20000};
+  double setup = 0, cold = 0, warm = 0, residual = 0;
+  int cold_iterations = 0, warm_iterations = 0;
+  bool converged = true;
+  for (auto _ : state) {
+    auto solver = linsolve::make_solver(method, settings);
+    if (!solver->setup(c.matrix)) {
+      state.SkipWithError(solver->setup_failure().c_str());
+      return;
+    }
+    setup = solver->setup_seconds();
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(c.rhs.size());
+    const auto s0 = solver->solve(c.rhs, x);
+    cold = s0.seconds;
+    cold_iterations = s0.iterations;
+    residual = linsolve::relative_residual(c.matrix, c.rhs, x);
+    x = c.warm_start;
+    const auto s1 = solver->solve(c.rhs, x);
+    warm = s1.seconds;
+    warm_iterations = s1.iterations;
+    converged = s0.converged && s1.converged;
+  }
+  state.SetLabel(linsolve::to_string(method));
+  state.counters["points"] = static_cast<double>(c.points);
+  state.counters["unknowns"] = static_cast<double>(c.rhs.size());
+  state.counters["nnz_per_row"] =
+      static_cast<double>(c.matrix.nonZeros()) / static_cast<double>(c.rhs.size());
+  state.counters["setup_s"] = setup;
+  state.counters["cold_iterations"] = cold_iterations;
+  state.counters["cold_solve_s"] = cold;
+  state.counters["warm_iterations"] = warm_iterations;
+  state.counters["warm_solve_s"] = warm;
+  state.counters["true_residual"] = residual;
+  state.counters["converged"] = converged;
+}
+
+void BM_PpeReuse(benchmark::State& state) {
+  if (!linsolve::is_available(linsolve::Method::boomeramg)) {
+    state.SkipWithError("built without PETSc");
+    return;
+  }
+  const linsolve::ReusePolicy policy{.across_steps = state.range(0) == 1};
+  long iterations = 0, steps = 0;
+  double setup = 0, solve = 0;
+  for (auto _ : state) {
+    auto flow = dam_break<2>(spacing_for<2>(4e4), Preconditioner::boomeramg, policy);
+    const double start = 0.5 / std::sqrt(9.81 / 0.3);  // t√(g/H) = 0.5: collapsing
+    while (flow.time() < start) flow.step(flow.stable_dt(0.0).first);
+    flow.observe_ppe([&](const PoissonSystem&, std::span<const double>, const SolveReport& r) {
+      iterations += r.iterations + r.discarded_iterations;
+      setup += r.setup_seconds;
+      solve += r.solve_seconds;
+    });
+    const auto before = flow.ppe_counters();
+    for (int s = 0; s < 60; ++s, ++steps) flow.step(flow.stable_dt(0.0).first);
+    state.counters["setups"] = static_cast<double>(flow.ppe_counters().setups - before.setups);
+    state.counters["rebuilds_after_growth"] = static_cast<double>(
+        flow.ppe_counters().rebuilds_after_growth - before.rebuilds_after_growth);
+  }
+  state.SetLabel(policy.across_steps ? "reuse across steps" : "setup every step");
+  state.counters["iterations_per_step"] = static_cast<double>(iterations) / steps;
+  state.counters["setup_s_per_step"] = setup / steps;
+  state.counters["solve_s_per_step"] = solve / steps;
+}
+
+void sizes_2d(benchmark::internal::Benchmark* b) {
+  for (int s = 0; s < 5; ++s)
+    for (int m = 0; m < 4; ++m)
+      if (!(m == 1 && s > 2)) b->Args({s, m});  // ILU's serial factorisation: to 160 k
+}
+void sizes_3d(benchmark::internal::Benchmark* b) {
+  for (int s = 0; s < 3; ++s)
+    for (int m = 0; m < 4; ++m)
+      if (!(m == 1 && s > 0)) b->Args({s, m});
+}
+
+BENCHMARK(BM_PpeSolve<2>)->Apply(sizes_2d)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_PpeSolve<3>)->Apply(sizes_3d)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+BENCHMARK(BM_PpeReuse)->Arg(0)->Arg(1)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
+
+}  // namespace
+}  // namespace hm::ldd
