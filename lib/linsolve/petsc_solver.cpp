@@ -168,8 +168,16 @@ class PetscSolver final : public LinearSolver {
   }
 
  private:
+  /// Sets this solver's option `name` to `value`, unless the user gave `-name` without a
+  /// prefix (PETSC_OPTIONS="-pc_hypre_boomeramg_strong_threshold 0.7"): then to the user's.
   void set_option(const char* name, const char* value) {
-    check(PetscOptionsSetValue(nullptr, fmt::format("-{}{}", prefix_, name).c_str(), value),
+    const std::string global = fmt::format("-{}", name);
+    char user[256] = {};
+    PetscBool given = PETSC_FALSE;
+    check(PetscOptionsGetString(nullptr, nullptr, global.c_str(), user, sizeof user, &given),
+          "PetscOptionsGetString");
+    check(PetscOptionsSetValue(nullptr, fmt::format("-{}{}", prefix_, name).c_str(),
+                               given ? user : value),
           "PetscOptionsSetValue");
   }
 

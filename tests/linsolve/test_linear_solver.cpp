@@ -3,9 +3,13 @@
 // flat under refinement, failures are statuses, and SystemSolver reuses setups exactly when the
 // matrix is unchanged and falls back when the primary fails.
 #include <cmath>
+#include <cstdio>
 #include <vector>
 
 #include <gtest/gtest.h>
+#ifdef HM_WITH_PETSC
+#include <petscsys.h>
+#endif
 
 #include "linsolve/linear_solver.hpp"
 #include "linsolve/system_solver.hpp"
@@ -132,6 +136,31 @@ TEST(LinearSolver, AlgebraicMultigridIterationsStayFlatUnderRefinement) {
         << to_string(m) << ": " << iterations[0] << " → " << iterations[1];
   }
 }
+
+#ifdef HM_WITH_PETSC
+// An option the user gives without a prefix (PETSC_OPTIONS="-pc_hypre_boomeramg_relax_type_all
+// Jacobi", read by PetscInitialize into the same database) replaces the solver's own default.
+TEST(LinearSolver, UserPetscOptionsReplaceTheDefaults) {
+  const CsrMatrix a = convection_diffusion(128, 0.5);
+  const Settings settings{.tolerance = 1e-8, .max_iterations = 500};
+  auto iterations = [&] {
+    auto solver = make_solver(Method::boomeramg, settings);
+    EXPECT_TRUE(solver->setup(a)) << solver->setup_failure();
+    Eigen::VectorXd x = Eigen::VectorXd::Zero(a.rows());
+    const SolveStats st = solver->solve(smooth_rhs(a.rows()), x);
+    EXPECT_TRUE(st.converged) << st.failure;
+    return st.iterations;
+  };
+  const int defaults = iterations();  // also starts PETSc
+  ASSERT_EQ(PetscOptionsSetValue(nullptr, "-pc_hypre_boomeramg_grid_sweeps_all", "4"), 0);
+  const int user = iterations();
+  ASSERT_EQ(PetscOptionsClearValue(nullptr, "-pc_hypre_boomeramg_grid_sweeps_all"), 0);
+  std::printf("BoomerAMG: %d iterations with one sweep a level (default), %d with four\n", defaults,
+              user);
+  EXPECT_LT(user, defaults);
+  EXPECT_EQ(iterations(), defaults);  // cleared: the default again
+}
+#endif
 
 TEST(SystemSolver, AnUnchangedMatrixIsSetUpOnce) {
   const CsrMatrix a = convection_diffusion(40, 0.5);
