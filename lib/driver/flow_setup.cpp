@@ -398,6 +398,20 @@ void validate_flow_scene(const io::Scene& scene) {
   validate_probes(scene);
 }
 
+namespace {
+/// A rigid wall of the scene: its nodes are thinned to the node spacing where its mesh is finer
+/// (a detailed STL part). A closed one with the fluid outside (an obstacle: a bracket, a pillar)
+/// is a solid body like the structure: the pairs through it are cut (its parts thinner than h
+/// would otherwise couple the fluid on their two faces) and the nodes of the walls it stands on
+/// that it covers are buried.
+template <int D>
+void configure_rigid_wall(ldd::WallMesh<D>& wall) {
+  wall.set_thins_dense_nodes(true);
+  if (!wall.thin() && wall.open_boundary_count() == 0 && wall.enclosed_measure() > 0.0)
+    wall.set_solid(true);
+}
+}  // namespace
+
 template <int D>
 FlowSetup<D> flow_setup(const io::Scene& scene,
                         const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces,
@@ -422,6 +436,7 @@ FlowSetup<D> flow_setup(const io::Scene& scene,
     setup.motions.push_back({surface.vertices, wall_motion(wall, D, &table)});
     if (!table.empty()) setup.motion_tables.push_back(table);
     setup.walls.emplace_back(surface, name, wall.boolean("thin"));
+    configure_rigid_wall(setup.walls.back());
     setup.wall_names.push_back(name);
   }
   if (structure) {

@@ -659,7 +659,7 @@ void FlowSolver<D>::move_points(std::span<const Vec<D>> shift, std::vector<Vec<D
 
 template <int D>
 void FlowSolver<D>::rebuild_neighbours() {
-  neighbours_ = find_neighbours<D>(points_.position, support());
+  neighbours_ = find_wet_neighbours<D>(points_, support());
   cut_pairs_through_thin_walls<D>(neighbours_, points_, walls_);
   // From the wall nodes' own search, dry ones included: the last wet node below a free surface
   // stands for its own share of the wall, not for the dry part above it too.

@@ -19,6 +19,20 @@ struct CellIndex {
   std::array<std::int64_t, D> dims{};
   std::vector<std::uint64_t> keys;  // sorted
   std::vector<Index> order;         // point of each sorted key
+  /// Dense table where the cells are few against the points: start[k] .. start[k + 1] are the
+  /// sorted positions of cell k's points. Empty for a sparse box (a splash): binary search.
+  std::vector<std::size_t> start;
+
+  /// The sorted positions [first, last) of the points in the cells from..to along x of a row.
+  std::pair<std::size_t, std::size_t> run(const std::array<std::int64_t, D>& from,
+                                          const std::array<std::int64_t, D>& to) const {
+    const std::uint64_t a = key(from), b = key(to);
+    if (!start.empty()) return {start[a], start[b + 1]};
+    const auto first = std::lower_bound(keys.begin(), keys.end(), a);
+    const auto last = std::upper_bound(first, keys.end(), b);
+    return {static_cast<std::size_t>(first - keys.begin()),
+            static_cast<std::size_t>(last - keys.begin())};
+  }
 
   std::array<std::int64_t, D> cell_of(const Vec<D>& x) const {
     std::array<std::int64_t, D> c{};
@@ -62,6 +76,14 @@ CellIndex<D> build_cells(std::span<const Vec<D>> x, double cell) {
   });
   g.keys.resize(n);
   for (std::size_t s = 0; s < n; ++s) g.keys[s] = k[static_cast<std::size_t>(g.order[s])];
+  constexpr double dense_cells_per_point = 16.0;
+  double cells = 1.0;
+  for (int a = 0; a < D; ++a) cells *= static_cast<double>(g.dims[a]);
+  if (cells <= dense_cells_per_point * static_cast<double>(std::max<std::size_t>(n, 4096))) {
+    g.start.assign(static_cast<std::size_t>(cells) + 1, 0);
+    for (std::uint64_t key : g.keys) ++g.start[static_cast<std::size_t>(key) + 1];
+    std::partial_sum(g.start.begin(), g.start.end(), g.start.begin());
+  }
   return g;
 }
 
@@ -72,6 +94,8 @@ void for_each_within(const CellIndex<D>& g, std::span<const Vec<D>> x, Index i, 
   const Vec<D>& xi = x[static_cast<std::size_t>(i)];
   const auto c = g.cell_of(xi);
   const double r2 = radius * radius;
+  // Cells of the radius: measured faster than cells of radius/2 (fewer distance tests, but 25
+  // shorter runs instead of 9 in 3-D: 460 against 390 ms for 240 k points).
   const std::int64_t x0 = std::max<std::int64_t>(c[0] - 1, 0);
   const std::int64_t x1 = std::min<std::int64_t>(c[0] + 1, g.dims[0] - 1);
   constexpr int rows = D == 2 ? 3 : 9;  // runs of three cells along x
@@ -85,14 +109,64 @@ void for_each_within(const CellIndex<D>& g, std::span<const Vec<D>> x, Index i, 
     if (!inside) continue;
     lo[0] = x0;
     hi[0] = x1;
-    const auto first = std::lower_bound(g.keys.begin(), g.keys.end(), g.key(lo));
-    const auto last = std::upper_bound(first, g.keys.end(), g.key(hi));
-    for (auto s = first; s != last; ++s) {
-      const Index j = g.order[static_cast<std::size_t>(s - g.keys.begin())];
+    const auto [first, last] = g.run(lo, hi);
+    for (std::size_t s = first; s < last; ++s) {
+      const Index j = g.order[s];
       const double d2 = (x[static_cast<std::size_t>(j)] - xi).squaredNorm();
       if (d2 < r2 && d2 > 0.0) f(j);
     }
   }
+}
+
+/// The lists of the points i with wanted(i); the others' are empty. One pass: blocks of
+/// contiguous points, taken by the threads in any order, each list into its block's own buffer;
+/// the buffers are concatenated in block order (the lists do not depend on the thread count or
+/// the schedule).
+template <int D, typename Wanted>
+Neighbours lists_of(const CellIndex<D>& g, std::span<const Vec<D>> x, double radius,
+                    Wanted&& wanted) {
+  Neighbours nb;
+  nb.radius = radius;
+  const auto n = static_cast<Index>(x.size());
+  nb.offsets.assign(static_cast<std::size_t>(n) + 1, 0);
+  constexpr Index block_size = 512;
+  const Index blocks = (n + block_size - 1) / block_size;
+  std::vector<std::vector<Index>> block_indices(static_cast<std::size_t>(blocks));
+#pragma omp parallel for schedule(dynamic, 1)
+  for (Index b = 0; b < blocks; ++b) {
+    auto& out = block_indices[static_cast<std::size_t>(b)];
+    for (Index i = b * block_size; i < std::min(n, (b + 1) * block_size); ++i) {
+      if (!wanted(i)) continue;
+      const std::size_t list_start = out.size();
+      for_each_within<D>(g, x, i, radius, [&](Index j) { out.push_back(j); });
+      std::sort(out.begin() + static_cast<std::ptrdiff_t>(list_start), out.end());
+      nb.offsets[static_cast<std::size_t>(i) + 1] =
+          static_cast<std::int64_t>(out.size() - list_start);
+    }
+  }
+  std::partial_sum(nb.offsets.begin(), nb.offsets.end(), nb.offsets.begin());
+  nb.indices.reserve(static_cast<std::size_t>(nb.offsets.back()));
+  for (const auto& block : block_indices)
+    nb.indices.insert(nb.indices.end(), block.begin(), block.end());
+  return nb;
+}
+
+/// The union of two sets of lists of the same points where each point has a list in one of
+/// them at most.
+Neighbours merge_disjoint(const Neighbours& a, const Neighbours& b) {
+  Neighbours nb;
+  nb.radius = a.radius;
+  const Index n = a.points();
+  nb.offsets.assign(static_cast<std::size_t>(n) + 1, 0);
+  for (Index i = 0; i < n; ++i)
+    nb.offsets[static_cast<std::size_t>(i) + 1] = nb.offsets[i] + a.count(i) + b.count(i);
+  nb.indices.resize(static_cast<std::size_t>(nb.offsets.back()));
+#pragma omp parallel for schedule(static)
+  for (Index i = 0; i < n; ++i) {
+    const auto list = a.count(i) > 0 ? a.of(i) : b.of(i);
+    std::copy(list.begin(), list.end(), nb.indices.begin() + nb.offsets[i]);
+  }
+  return nb;
 }
 
 }  // namespace
@@ -100,53 +174,25 @@ void for_each_within(const CellIndex<D>& g, std::span<const Vec<D>> x, Index i, 
 template <int D>
 Neighbours find_neighbours(std::span<const Vec<D>> x, double radius) {
   HM_ASSERT(radius > 0.0, "find_neighbours: radius {} must be > 0", radius);
-  Neighbours nb;
-  nb.radius = radius;
-  const auto n = static_cast<Index>(x.size());
-  nb.offsets.assign(static_cast<std::size_t>(n) + 1, 0);
-  if (n == 0) return nb;
-  const auto g = build_cells<D>(x, radius);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (Index i = 0; i < n; ++i) {
-    std::int64_t c = 0;
-    for_each_within<D>(g, x, i, radius, [&](Index) { ++c; });
-    nb.offsets[static_cast<std::size_t>(i) + 1] = c;
-  }
-  std::partial_sum(nb.offsets.begin(), nb.offsets.end(), nb.offsets.begin());
-  nb.indices.resize(static_cast<std::size_t>(nb.offsets.back()));
-#pragma omp parallel for schedule(dynamic, 256)
-  for (Index i = 0; i < n; ++i) {
-    Index* out = nb.indices.data() + nb.offsets[i];
-    Index* const begin = out;
-    for_each_within<D>(g, x, i, radius, [&](Index j) { *out++ = j; });
-    std::sort(begin, out);
-  }
-  return nb;
+  if (x.empty()) return lists_of<D>(CellIndex<D>{}, x, radius, [](Index) { return false; });
+  return lists_of<D>(build_cells<D>(x, radius), x, radius, [](Index) { return true; });
 }
 
-void remove_pairs(Neighbours& nb, const std::function<bool(Index, Index)>& drop) {
-  const Index n = nb.points();
-  std::vector<std::uint8_t> keep(nb.indices.size());
-  std::vector<std::int64_t> kept(static_cast<std::size_t>(n) + 1, 0);
-#pragma omp parallel for schedule(dynamic, 256)
-  for (Index i = 0; i < n; ++i) {
-    std::int64_t c = 0;
-    for (auto s = nb.offsets[i]; s < nb.offsets[i + 1]; ++s) {
-      keep[static_cast<std::size_t>(s)] = drop(i, nb.indices[static_cast<std::size_t>(s)]) ? 0 : 1;
-      c += keep[static_cast<std::size_t>(s)];
-    }
-    kept[static_cast<std::size_t>(i) + 1] = c;
-  }
-  std::partial_sum(kept.begin(), kept.end(), kept.begin());
-  std::vector<Index> out(static_cast<std::size_t>(kept.back()));
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    auto o = kept[static_cast<std::size_t>(i)];
-    for (auto s = nb.offsets[i]; s < nb.offsets[i + 1]; ++s)
-      if (keep[static_cast<std::size_t>(s)]) out[static_cast<std::size_t>(o++)] = nb.indices[s];
-  }
-  nb.offsets.swap(kept);
-  nb.indices.swap(out);
+template <int D>
+Neighbours find_wet_neighbours(const PointSet<D>& points, double radius) {
+  HM_ASSERT(radius > 0.0, "find_wet_neighbours: radius {} must be > 0", radius);
+  const std::span<const Vec<D>> x(points.position);
+  if (x.empty()) return lists_of<D>(CellIndex<D>{}, x, radius, [](Index) { return false; });
+  const auto g = build_cells<D>(x, radius);
+  const auto fluid =
+      lists_of<D>(g, x, radius, [&](Index i) { return points.kind[i] == PointKind::fluid; });
+  // A wall node is wet when a fluid point is within the radius: then it is in that point's list.
+  std::vector<std::uint8_t> wet(x.size(), 0);
+  for (Index i = 0; i < points.size(); ++i)
+    for (Index j : fluid.of(i))
+      if (points.kind[j] == PointKind::wall) wet[static_cast<std::size_t>(j)] = 1;
+  const auto wall = lists_of<D>(g, x, radius, [&](Index i) { return wet[i] != 0; });
+  return merge_disjoint(fluid, wall);
 }
 
 template <int D>
@@ -175,6 +221,8 @@ Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& nb) {
 
 template Neighbours find_neighbours<2>(std::span<const Vec<2>>, double);
 template Neighbours find_neighbours<3>(std::span<const Vec<3>>, double);
+template Neighbours find_wet_neighbours<2>(const PointSet<2>&, double);
+template Neighbours find_wet_neighbours<3>(const PointSet<3>&, double);
 template Index deactivate_dry_wall_nodes<2>(PointSet<2>&, Neighbours&);
 template Index deactivate_dry_wall_nodes<3>(PointSet<3>&, Neighbours&);
 

@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 
 #include <Eigen/Geometry>
 
@@ -49,8 +50,12 @@ double horizontal_distance(const Vec<D>& r, const Vec<D>& x) {
 // ---- wall node lookup
 // ----------------------------------------------------------------------------
 
-/// The active wall nodes of one body in cells of size `cell`, sorted by cell: a query visits the
-/// 3^D cells around a point and finds each cell's nodes by binary search.
+/// The active wall nodes of one body in cells of size `cell`, sorted by cell (lexicographic, the
+/// first axis slowest) and by index within a cell: a query visits the 3^D cells around a point in
+/// a fixed order, so sums over the nodes it finds do not depend on how a cell is looked up. Cells
+/// are found in O(1) from a dense table over the nodes' bounding box of cells where that table
+/// is at most kDenseCellsPerEntry times the entries (wall nodes on the faces of a tank), else by
+/// binary search on cell keys.
 template <int D>
 class WallNodeGrid {
  public:
@@ -64,9 +69,11 @@ class WallNodeGrid {
   /// The points i with keep(i) (e.g. the connected fluid points for the wall shear).
   template <typename Keep>
   WallNodeGrid(const PointSet<D>& points, double cell, Keep&& keep) : cell_(cell) {
+    std::vector<std::pair<Cell, Index>> entries;
     for (Index i = 0; i < points.size(); ++i)
-      if (keep(i)) entries_.emplace_back(cell_of(points.position[i]), i);
-    std::sort(entries_.begin(), entries_.end());
+      if (keep(i)) entries.emplace_back(cell_of(points.position[i]), i);
+    std::sort(entries.begin(), entries.end());
+    index_cells(entries);
   }
 
   /// Calls visit(j) for every node j whose cell is within one cell of x's.
@@ -78,22 +85,107 @@ class WallNodeGrid {
     while (true) {
       Cell c;
       for (int a = 0; a < D; ++a) c[a] = centre[a] + offset[a];
-      auto it = std::lower_bound(entries_.begin(), entries_.end(), std::pair<Cell, Index>(c, -1));
-      for (; it != entries_.end() && it->first == c; ++it) visit(it->second);
+      const auto [first, last] = nodes_in(c);
+      for (auto s = first; s < last; ++s) visit(node_[s]);
       int a = 0;
       while (a < D && ++offset[a] > 1) offset[a++] = -1;
       if (a == D) break;
     }
   }
 
+  /// Whether a node lies in a cell that meets the box [lo, hi] grown by one cell on each side
+  /// (every node within `cell` of the box does).
+  bool any_near_box(const Vec<D>& lo, const Vec<D>& hi) const {
+    if (node_.empty()) return false;
+    Cell from = cell_of(lo), to = cell_of(hi), c;
+    for (int a = 0; a < D; ++a) {
+      from[a] = std::max(from[a] - 1, low_[a]);
+      to[a] = std::min(to[a] + 1, low_[a] + dims_[a] - 1);
+      if (from[a] > to[a]) return false;
+    }
+    c = from;
+    while (true) {
+      const auto [first, last] = nodes_in(c);
+      if (first < last) return true;
+      int a = D - 1;
+      while (a >= 0 && ++c[a] > to[a]) {
+        c[a] = from[a];
+        --a;
+      }
+      if (a < 0) return false;
+    }
+  }
+
  private:
+  static constexpr std::int64_t kDenseCellsPerEntry = 64;
+
   Cell cell_of(const Vec<D>& x) const {
     Cell c;
     for (int a = 0; a < D; ++a) c[a] = static_cast<std::int64_t>(std::floor(x[a] / cell_));
     return c;
   }
+
+  /// Row-major number of a cell of the bounding box (the last axis fastest: the sort order).
+  std::int64_t key(const Cell& c) const {
+    std::int64_t k = 0;
+    for (int a = 0; a < D; ++a) k = k * dims_[a] + (c[a] - low_[a]);
+    return k;
+  }
+
+  bool in_box(const Cell& c) const {
+    for (int a = 0; a < D; ++a)
+      if (c[a] < low_[a] || c[a] >= low_[a] + dims_[a]) return false;
+    return true;
+  }
+
+  void index_cells(const std::vector<std::pair<Cell, Index>>& entries) {
+    node_.reserve(entries.size());
+    for (const auto& e : entries) node_.push_back(e.second);
+    if (entries.empty()) return;
+    low_ = entries.front().first;
+    Cell high = low_;
+    for (const auto& e : entries)
+      for (int a = 0; a < D; ++a) {
+        low_[a] = std::min(low_[a], e.first[a]);
+        high[a] = std::max(high[a], e.first[a]);
+      }
+    double cells = 1.0;
+    for (int a = 0; a < D; ++a) {
+      dims_[a] = high[a] - low_[a] + 1;
+      cells *= static_cast<double>(dims_[a]);
+    }
+    if (cells > 4e18)
+      numerical_error(
+          "wall loads: the points span {} cells of {} m; points have left the "
+          "domain (a run diverged?)",
+          cells, cell_);
+    key_.reserve(entries.size());
+    for (const auto& e : entries) key_.push_back(key(e.first));
+    const double dense_limit = static_cast<double>(kDenseCellsPerEntry) *
+                               static_cast<double>(std::max<std::size_t>(entries.size(), 1024));
+    if (cells > dense_limit) return;
+    // start_[k] .. start_[k + 1]: the nodes of cell k.
+    start_.assign(static_cast<std::size_t>(cells) + 1, 0);
+    for (std::int64_t k : key_) ++start_[static_cast<std::size_t>(k) + 1];
+    std::partial_sum(start_.begin(), start_.end(), start_.begin());
+  }
+
+  /// The range [first, last) of node_ in cell c.
+  std::pair<std::size_t, std::size_t> nodes_in(const Cell& c) const {
+    if (node_.empty() || !in_box(c)) return {0, 0};
+    const std::int64_t k = key(c);
+    if (!start_.empty())
+      return {start_[static_cast<std::size_t>(k)], start_[static_cast<std::size_t>(k) + 1]};
+    const auto range = std::equal_range(key_.begin(), key_.end(), k);
+    return {static_cast<std::size_t>(range.first - key_.begin()),
+            static_cast<std::size_t>(range.second - key_.begin())};
+  }
+
   double cell_;
-  std::vector<std::pair<Cell, Index>> entries_;
+  Cell low_{}, dims_{};
+  std::vector<Index> node_;         // sorted by cell, then index
+  std::vector<std::int64_t> key_;   // cell key of each node_
+  std::vector<std::size_t> start_;  // dense table (may be empty)
 };
 
 /// Shepard pressure at x from the nodes of `grid` within dx whose normal is within 60° of
@@ -158,6 +250,7 @@ std::vector<QuadraturePoint<3>> element_quadrature(const std::array<Vec<3>, 3>& 
 /// One element's share of the loads: force on each of its vertices, and its wetted measure.
 template <int D>
 struct ElementLoad {
+  ElementLoad() { vertex_force.fill(Vec<D>::Zero()); }
   std::array<Vec<D>, D> vertex_force;
   double wetted = 0.0;
 };
@@ -185,6 +278,19 @@ ElementLoad<D> element_load(const WallMesh<D>& wall, Index e, double dx, Tractio
     for (int k = 0; k < D; ++k) load.vertex_force[k] += (q.measure * q.barycentric[k]) * t;
   }
   return load;
+}
+
+/// Whether any node of `grid` (cells of size ≥ the Shepard radius) may reach element e: else
+/// every quadrature point of it is dry and its load is zero.
+template <int D>
+bool element_near_nodes(const WallMesh<D>& wall, Index e, const WallNodeGrid<D>& grid) {
+  const auto& cell = wall.element(e);
+  Vec<D> lo = wall.vertices()[cell[0]], hi = lo;
+  for (int k = 1; k < D; ++k) {
+    lo = lo.cwiseMin(wall.vertices()[cell[k]]);
+    hi = hi.cwiseMax(wall.vertices()[cell[k]]);
+  }
+  return grid.any_near_box(lo, hi);
 }
 
 /// Wall shear traction at x (wall velocity U, side normal n) from the fluid points of `fluid`
@@ -303,12 +409,17 @@ WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& w
   const Index elements = wall.element_count();
   std::vector<ElementLoad<D>> per_element(static_cast<std::size_t>(elements));
 #pragma omp parallel for schedule(dynamic, 16)
-  for (Index e = 0; e < elements; ++e)
+  for (Index e = 0; e < elements; ++e) {
+    if (!element_near_nodes(wall, e, grid)) {  // dry (the ceiling of a tank): no load
+      per_element[e] = ElementLoad<D>{};
+      continue;
+    }
     per_element[e] = element_load(
         wall, e, dx, [&](const Vec<D>&, const Vec<D>& x, const Vec<D>& side, double& weight) {
           // The fluid pushes the wall away from itself: −p n, n into the fluid.
           return Vec<D>(-shepard_wall_pressure(points, pressure, grid, x, side, dx, weight) * side);
         });
+  }
   return assemble_loads(wall, per_element);
 }
 
@@ -323,12 +434,17 @@ WallLoads<D> wall_viscous_loads(const PointSet<D>& points, const WallMesh<D>& wa
   const Index elements = wall.element_count();
   std::vector<ElementLoad<D>> per_element(static_cast<std::size_t>(elements));
 #pragma omp parallel for schedule(dynamic, 16)
-  for (Index e = 0; e < elements; ++e)
+  for (Index e = 0; e < elements; ++e) {
+    if (!element_near_nodes(wall, e, fluid)) {
+      per_element[e] = ElementLoad<D>{};
+      continue;
+    }
     per_element[e] = element_load(
         wall, e, dx, [&](const Vec<D>& b, const Vec<D>& x, const Vec<D>& side, double& weight) {
           return shepard_wall_shear(points, fluid, x, wall.velocity_at(e, b), side, dx,
                                     dynamic_viscosity, weight);
         });
+  }
   return assemble_loads(wall, per_element);
 }
 

@@ -1,6 +1,7 @@
 #include "ldd/walls.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <map>
@@ -200,6 +201,21 @@ template <int D>
 WallMesh<D>::WallMesh(WallMesh&&) noexcept = default;
 template <int D>
 WallMesh<D>& WallMesh<D>::operator=(WallMesh&&) noexcept = default;
+
+template <int D>
+double WallMesh<D>::enclosed_measure() const {
+  // Divergence theorem with the field x/D: Σ over elements of (x·n) |e| / D. A segment's normal is
+  // its tangent turned left, a triangle's the right-hand cross product.
+  double measure = 0.0;
+  for (const auto& c : cells_) {
+    if constexpr (D == 2) {
+      measure += 0.5 * (x_[c[1]].x() * x_[c[0]].y() - x_[c[0]].x() * x_[c[1]].y());
+    } else {
+      measure += x_[c[0]].dot(x_[c[1]].cross(x_[c[2]])) / 6.0;
+    }
+  }
+  return measure;
+}
 
 template <int D>
 void WallMesh<D>::compute_normals() {
@@ -465,6 +481,63 @@ void WallMesh<D>::require_closed(std::string_view purpose) const {
 
 // ---- wall nodes ------------------------------------------------------------------------------
 
+namespace {
+
+template <int D>
+double median_edge_length(const WallMesh<D>& wall) {
+  std::vector<double> length;
+  length.reserve(static_cast<std::size_t>(wall.element_count()) * D);
+  for (Index e = 0; e < wall.element_count(); ++e) {
+    const auto& c = wall.element(e);
+    for (int k = 0; k < (D == 2 ? 1 : 3); ++k)
+      length.push_back((wall.vertices()[c[k]] - wall.vertices()[c[(k + 1) % D]]).norm());
+  }
+  if (length.empty()) return 0.0;
+  auto middle = length.begin() + static_cast<std::ptrdiff_t>(length.size() / 2);
+  std::nth_element(length.begin(), middle, length.end());
+  return *middle;
+}
+
+/// The sites (element, barycentric) farther than `spacing` from every site kept before them
+/// whose normal is within 60° of theirs (a greedy Poisson-disk thinning, in site order).
+template <int D>
+std::vector<std::pair<Index, Vec<D>>> thinned_sites(
+    const WallMesh<D>& wall, const std::vector<std::pair<Index, Vec<D>>>& sites, double spacing) {
+  constexpr double min_alignment = 0.5;  // cos 60°
+  using Cell = std::array<std::int64_t, D>;
+  std::map<Cell, std::vector<std::pair<Vec<D>, Vec<D>>>> kept_in;  // cell → (position, normal)
+  auto cell_of = [&](const Vec<D>& x) {
+    Cell c;
+    for (int a = 0; a < D; ++a) c[a] = static_cast<std::int64_t>(std::floor(x[a] / spacing));
+    return c;
+  };
+  auto crowded = [&](const Vec<D>& x, const Vec<D>& n) {
+    const Cell centre = cell_of(x);
+    Cell offset;
+    offset.fill(-1);
+    while (true) {
+      Cell c;
+      for (int a = 0; a < D; ++a) c[a] = centre[a] + offset[a];
+      if (const auto it = kept_in.find(c); it != kept_in.end())
+        for (const auto& [y, m] : it->second)
+          if ((y - x).norm() < spacing && m.dot(n) > min_alignment) return true;
+      int a = 0;
+      while (a < D && ++offset[a] > 1) offset[a++] = -1;
+      if (a == D) return false;
+    }
+  };
+  std::vector<std::pair<Index, Vec<D>>> kept;
+  for (const auto& [e, b] : sites) {
+    const Vec<D> x = wall.point_at(e, b), n = wall.normal_at(e, b);
+    if (crowded(x, n)) continue;
+    kept_in[cell_of(x)].emplace_back(x, n);
+    kept.emplace_back(e, b);
+  }
+  return kept;
+}
+
+}  // namespace
+
 template <int D>
 Index add_wall_nodes(PointSet<D>& points, const WallMesh<D>& wall, int body, double dx) {
   HM_ASSERT(dx > 0.0, "add_wall_nodes: dx {} must be > 0", dx);
@@ -510,6 +583,8 @@ Index add_wall_nodes(PointSet<D>& points, const WallMesh<D>& wall, int body, dou
               e, Vec<3>(double(i) / nmax, double(j) / nmax, double(nmax - i - j) / nmax));
     }
   }
+  if (wall.thins_dense_nodes() && median_edge_length(wall) < 0.5 * dx)
+    sites = thinned_sites(wall, sites, dx);
   for (const int side : wall.thin() ? std::vector<int>{1, -1} : std::vector<int>{1})
     for (const auto& [e, b] : sites)
       points.add_wall_node(wall.point_at(e, b), side * wall.normal_at(e, b), {body, e, b});
@@ -582,13 +657,19 @@ std::int64_t cut_pairs_through_thin_walls(Neighbours& nb, const PointSet<D>& poi
   std::vector<int> thin;
   for (std::size_t w = 0; w < walls.size(); ++w)
     if (walls[w].thin() || walls[w].solid()) thin.push_back(static_cast<int>(w));
-  // near[i] bit w: point i is within h of thin wall w.
+  // near[i] bit w: point i is within h of thin wall w. Only points within h of the wall's
+  // bounding box can be (the closest-point query for every point of a 3-D tank was a tenth of
+  // wedge_entry_3d's run).
   std::vector<std::uint32_t> near(static_cast<std::size_t>(n), 0);
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < n; ++i)
-    for (std::size_t t = 0; t < thin.size() && t < 32; ++t)
-      if (std::abs(walls[thin[t]].closest(points.position[i]).signed_distance) < nb.radius)
-        near[i] |= 1u << t;
+    for (std::size_t t = 0; t < thin.size() && t < 32; ++t) {
+      const auto& wall = walls[thin[t]];
+      const Vec<D>& x = points.position[i];
+      const bool in_reach = (x.array() >= wall.lower().array() - nb.radius).all() &&
+                            (x.array() <= wall.upper().array() + nb.radius).all();
+      if (in_reach && std::abs(wall.closest(x).signed_distance) < nb.radius) near[i] |= 1u << t;
+    }
   // Wall nodes of other walls inside a solid body, or on its surface facing into it (the floor
   // under a gate standing on it), are buried: they lose every pair. Left in, the floor nodes
   // under the elastic gate saw the fluid at the gate's foot through weak Neumann rows that
