@@ -2,6 +2,7 @@
 // Small types shared by the LDD (Lagrangian differencing dynamics) numerical core, for 2-D and
 // 3-D from one code base: the dimension D is a template parameter, instantiated for 2 and 3 in
 // the .cpp files. Lengths in metres, velocities in m/s, pressure in Pa (gauge), density kg/m³.
+#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -52,6 +53,22 @@ inline double wendland_c2_derivative(double q) {
   if (q >= 1.0) return 0.0;
   const double s = 1.0 - q;
   return -20.0 * q * s * s * s;
+}
+
+/// Calls visit(c) for the 3^D cells within one cell of `centre`, the first axis fastest, until
+/// visit returns true; returns whether one did.
+template <int D, typename Visit>
+bool any_cell_around(const std::array<std::int64_t, D>& centre, Visit&& visit) {
+  std::array<std::int64_t, D> offset;
+  offset.fill(-1);
+  while (true) {
+    std::array<std::int64_t, D> c;
+    for (int a = 0; a < D; ++a) c[a] = centre[a] + offset[a];
+    if (visit(c)) return true;
+    int a = 0;
+    while (a < D && ++offset[a] > 1) offset[a++] = -1;
+    if (a == D) return false;
+  }
 }
 
 }  // namespace hm::ldd

@@ -79,18 +79,11 @@ class WallNodeGrid {
   /// Calls visit(j) for every node j whose cell is within one cell of x's.
   template <typename Visit>
   void for_each_near(const Vec<D>& x, Visit&& visit) const {
-    const Cell centre = cell_of(x);
-    Cell offset;
-    offset.fill(-1);
-    while (true) {
-      Cell c;
-      for (int a = 0; a < D; ++a) c[a] = centre[a] + offset[a];
+    any_cell_around<D>(cell_of(x), [&](const Cell& c) {
       const auto [first, last] = nodes_in(c);
       for (auto s = first; s < last; ++s) visit(node_[s]);
-      int a = 0;
-      while (a < D && ++offset[a] > 1) offset[a++] = -1;
-      if (a == D) break;
-    }
+      return false;
+    });
   }
 
   /// Whether a node lies in a cell that meets the box [lo, hi] grown by one cell on each side

@@ -512,19 +512,13 @@ std::vector<std::pair<Index, Vec<D>>> thinned_sites(
     return c;
   };
   auto crowded = [&](const Vec<D>& x, const Vec<D>& n) {
-    const Cell centre = cell_of(x);
-    Cell offset;
-    offset.fill(-1);
-    while (true) {
-      Cell c;
-      for (int a = 0; a < D; ++a) c[a] = centre[a] + offset[a];
-      if (const auto it = kept_in.find(c); it != kept_in.end())
-        for (const auto& [y, m] : it->second)
-          if ((y - x).norm() < spacing && m.dot(n) > min_alignment) return true;
-      int a = 0;
-      while (a < D && ++offset[a] > 1) offset[a++] = -1;
-      if (a == D) return false;
-    }
+    return any_cell_around<D>(cell_of(x), [&](const Cell& c) {
+      const auto it = kept_in.find(c);
+      if (it == kept_in.end()) return false;
+      for (const auto& [y, m] : it->second)
+        if ((y - x).norm() < spacing && m.dot(n) > min_alignment) return true;
+      return false;
+    });
   };
   std::vector<std::pair<Index, Vec<D>>> kept;
   for (const auto& [e, b] : sites) {
