@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 
 #include <array>
+#include <cmath>
 
 #include "core/errors.hpp"
 #include "ldd/probes.hpp"
@@ -74,19 +75,28 @@ std::vector<double> evaluate_probes(const ldd::FlowSolver<D>& solver,
   const auto& points = solver.points();
   const auto& walls = solver.walls();
   const double dx = solver.dx();
+  constexpr double missing = probe_missing_value;
   std::vector<double> row;
   for (const Probe<D>& p : probes) {
+    bool wet = false;
     switch (p.kind) {
-      case ProbeKind::pressure:
-        row.push_back(
-            ldd::probe_pressure<D>(points, walls, probe_position<D>(p, walls), p.radius, dx));
+      case ProbeKind::pressure: {
+        const double v =
+            ldd::probe_pressure<D>(points, walls, probe_position<D>(p, walls), p.radius, dx, &wet);
+        row.push_back(wet ? v : missing);
         break;
-      case ProbeKind::elevation:
-        row.push_back(ldd::probe_elevation<D>(points, probe_position<D>(p, walls), dx));
+      }
+      case ProbeKind::elevation: {
+        const double v = ldd::probe_elevation<D>(points, probe_position<D>(p, walls), dx, &wet);
+        row.push_back(wet ? v : missing);
         break;
-      case ProbeKind::front:
-        row.push_back(ldd::probe_front<D>(points, p.direction, p.band_low, p.band_high, dx));
+      }
+      case ProbeKind::front: {
+        const double v =
+            ldd::probe_front<D>(points, p.direction, p.band_low, p.band_high, dx, &wet);
+        row.push_back(wet ? v : missing);
         break;
+      }
       case ProbeKind::force: {
         HM_ASSERT(p.wall >= 0 && p.wall < static_cast<int>(walls.size()),
                   "probe '{}': wall index {} of {}", p.name, p.wall, walls.size());
@@ -100,6 +110,23 @@ std::vector<double> evaluate_probes(const ldd::FlowSolver<D>& solver,
   return row;
 }
 
+template <int D>
+std::vector<std::string> probes_without_fluid(std::span<const Probe<D>> probes,
+                                              std::span<const std::vector<double>> rows) {
+  std::vector<std::string> names;
+  std::size_t column = 0;
+  for (const Probe<D>& p : probes) {
+    const std::size_t width = p.kind == ProbeKind::force ? D : 1;
+    bool saw_fluid = false;
+    for (const auto& row : rows)
+      for (std::size_t c = column; c < column + width && c < row.size(); ++c)
+        saw_fluid = saw_fluid || (p.kind == ProbeKind::force ? row[c] != 0.0 : !std::isnan(row[c]));
+    if (!saw_fluid) names.push_back(p.name);
+    column += width;
+  }
+  return names;
+}
+
 template void attach_probe<2>(Probe<2>&, const ldd::WallMesh<2>&, int);
 template void attach_probe<3>(Probe<3>&, const ldd::WallMesh<3>&, int);
 template ldd::Vec<2> probe_position<2>(const Probe<2>&, std::span<const ldd::WallMesh<2>>);
@@ -110,5 +137,9 @@ template std::vector<double> evaluate_probes<2>(const ldd::FlowSolver<2>&,
                                                 std::span<const Probe<2>>);
 template std::vector<double> evaluate_probes<3>(const ldd::FlowSolver<3>&,
                                                 std::span<const Probe<3>>);
+template std::vector<std::string> probes_without_fluid<2>(std::span<const Probe<2>>,
+                                                          std::span<const std::vector<double>>);
+template std::vector<std::string> probes_without_fluid<3>(std::span<const Probe<3>>,
+                                                          std::span<const std::vector<double>>);
 
 }  // namespace hm::coupling

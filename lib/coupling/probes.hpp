@@ -7,8 +7,14 @@
 //                                  [band_low, band_high] (absolute heights)
 //   force     → `<name>.fx [N]`, `.fy [N]` (, `.fz [N]`) pressure force on wall `wall`
 //                (2-D: per metre of width, N/m)
-// A dry pressure probe or gauge and an empty front band read 0. Pressure probes and gauges can
-// be fixed to a wall (`moves_with`): a sensor on a swaying tank moves with it.
+// Missing values: a pressure probe with no fluid in its support (its weight below a tenth of a
+// full lattice's: spray, or a wall sensor before the surge), a gauge with no fluid on its
+// vertical and a front band with no fluid point write probe_missing_value (NaN; "nan" in the
+// CSV), never 0, which would look like data. A force probe on a dry wall reads 0 N, the true
+// load. A probe that never saw fluid over a run (every sample missing; a force probe: every
+// sample exactly 0) is named by probes_without_fluid, warned about and recorded. Pressure probes
+// and gauges can be fixed to a wall (`moves_with`): a sensor on a swaying tank moves with it.
+#include <limits>
 #include <span>
 #include <string>
 #include <vector>
@@ -49,9 +55,19 @@ ldd::Vec<D> probe_position(const Probe<D>& probe, std::span<const ldd::WallMesh<
 template <int D>
 std::vector<std::string> probe_columns(std::span<const Probe<D>> probes);
 
-/// One value per column of probe_columns, from the solver's current state.
+/// The value of a sample with no fluid in the probe's support (a quiet NaN).
+inline constexpr double probe_missing_value = std::numeric_limits<double>::quiet_NaN();
+
+/// One value per column of probe_columns, from the solver's current state; probe_missing_value
+/// where a probe is dry.
 template <int D>
 std::vector<double> evaluate_probes(const ldd::FlowSolver<D>& solver,
                                     std::span<const Probe<D>> probes);
+
+/// The names of the probes that saw no fluid in any of `rows` (rows of evaluate_probes, in the
+/// order of `probes`): every value missing, or for a force probe every value exactly 0.
+template <int D>
+std::vector<std::string> probes_without_fluid(std::span<const Probe<D>> probes,
+                                              std::span<const std::vector<double>> rows);
 
 }  // namespace hm::coupling

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
+#include <spdlog/spdlog.h>
 
 #include "core/errors.hpp"
 #include "core/text.hpp"
@@ -263,6 +264,63 @@ bool inside(const ldd::Box<D>& box, const ldd::Vec<D>& x) {
   return ((x - box.lower).array() >= -tol).all() && ((box.upper - x).array() >= -tol).all();
 }
 
+/// The first and last lattice points of a region's seed lattice (its corners inset by dx/2) and
+/// its centre: where a region lies against a closed wall, without testing every point.
+template <int D>
+std::vector<ldd::Vec<D>> region_samples(const ldd::Box<D>& box, double dx) {
+  std::vector<ldd::Vec<D>> samples{0.5 * (box.lower + box.upper)};
+  for (int corner = 0; corner < (1 << D); ++corner) {
+    ldd::Vec<D> x;
+    for (int a = 0; a < D; ++a)
+      x[a] = (corner >> a) & 1 ? std::max(box.lower[a], box.upper[a] - 0.5 * dx)
+                               : std::min(box.upper[a], box.lower[a] + 0.5 * dx);
+    samples.push_back(x);
+  }
+  return samples;
+}
+
+/// A closed file wall is a container (its normals, as read, point into it: the fluid inside) or,
+/// with flip_normals = true, an obstacle (the fluid outside). The fluid regions must agree: a
+/// region reaching outside a container, or lying wholly inside an obstacle, means the side is the
+/// wrong one, and seeding would silently fill the obstacle or empty the tank (a closed STL
+/// obstacle without flip_normals was seeded as a tank). InputError naming the wall, the region
+/// and the key to set.
+template <int D>
+void check_sides_of_closed_walls(const io::Scene& scene, const FlowSetup<D>& setup) {
+  const auto views = scene.array("wall");
+  const auto regions = scene.array("fluid.region");
+  const double dx = setup.options.dx;
+  for (std::size_t w = 0; w < views.size(); ++w) {
+    const auto& wall = setup.walls[w];
+    if (wall.thin() || wall.open_boundary_count() != 0) continue;
+    const bool container = wall.enclosed_measure() < 0.0;
+    for (const SceneView& region : regions) {
+      ldd::Box<D> box;
+      box.lower = vec_of<D>(region.vector("origin"));
+      box.upper = box.lower + vec_of<D>(region.vector("size"));
+      int fluid_side = 0, other_side = 0;
+      for (const auto& x : region_samples<D>(box, dx))
+        wall.closest(x).signed_distance > 0.0 ? ++fluid_side : ++other_side;
+      const std::string& name = setup.wall_names[w];
+      if (container && other_side > 0)
+        input_error(
+            "{}: this fluid region reaches outside the closed wall '{}', which is a container "
+            "(its normals point into it: the fluid inside). If '{}' is an obstacle with the "
+            "fluid around it, set {} = true",
+            region.where("origin"), name, name, views[w].full("flip_normals"));
+      if (!container && fluid_side == 0)
+        input_error(
+            "{}: this fluid region lies inside the closed wall '{}', which is an obstacle "
+            "({} = {}: the fluid outside it). If '{}' is the tank, {}",
+            region.where("origin"), name, views[w].full("flip_normals"),
+            views[w].boolean("flip_normals"), name,
+            views[w].boolean("flip_normals") ? "remove flip_normals"
+                                             : "its file's normals point out of it: set "
+                                               "flip_normals = true");
+    }
+  }
+}
+
 /// Seeds every region; points of a region inside an earlier region are left out (the earlier
 /// region fills the overlap).
 template <int D>
@@ -292,22 +350,66 @@ void seed_regions(const io::Scene& scene, FlowSetup<D>& setup) {
   }
 }
 
-/// A probe behind a (non-thin) wall measures inside a solid or outside the tank: an error.
+/// A probe on a wall's face measures there from the fluid side. Within on_face_tolerance·dx of a
+/// (non-thin) wall's face, on either side, a probe is moved to fluid_side_offset·dx in front of
+/// the face's closest point, along its (pseudo-)normal: it then reads the wall pressure there —
+/// the face's wall nodes and the fluid of its half sphere — as a probe a hair inside the fluid
+/// does. Without this a probe given "on" an STL face read 0 Pa for a whole run: the file is read
+/// in single precision, so the face lay a few 1e-8 m beyond the coordinate given, the probe sat
+/// inside the solid and every fluid point lay behind the face. The tolerance also takes in a
+/// sensor given on a curved surface whose facets lie a little in front of it.
+constexpr double on_face_tolerance = 0.05;  // [dx]
+constexpr double fluid_side_offset = 1e-3;  // [dx]
+
+/// What lies behind a wall's face, for the error of a probe placed there.
 template <int D>
-void require_fluid_side(const SceneView& view, const FlowSetup<D>& setup,
-                        const ldd::Vec<D>& position) {
-  for (std::size_t w = 0; w < setup.walls.size(); ++w) {
-    const auto& wall = setup.walls[w];
-    if (wall.thin()) continue;
-    const double tolerance = 1e-6 * (wall.upper() - wall.lower()).norm();
-    const auto c = wall.closest(position);
-    if (c.signed_distance < -tolerance)
-      input_error(
-          "{} = [{}] is {:.3g} m behind wall '{}' (on the side its normals point away from: "
-          "inside a solid or outside the fluid's container); put the probe on the fluid side",
-          view.where("position"), fmt::join(position, ", "), -c.signed_distance,
-          setup.wall_names[w]);
-  }
+std::string behind(const ldd::WallMesh<D>& wall, const std::string& name) {
+  if (wall.solid()) return fmt::format("inside the solid body '{}'", name);
+  if (wall.open_boundary_count() == 0 && wall.enclosed_measure() < 0.0)
+    return fmt::format("outside the container '{}'", name);
+  return fmt::format("behind wall '{}' (on the side its normals point away from)", name);
+}
+
+/// The position a probe given at `x` measures at (see on_face_tolerance). InputError when it
+/// lies deeper behind a wall's face (inside a solid, outside a container) — naming the probe,
+/// its position and the nearest point on the fluid side — or on a thin wall, which has fluid on
+/// both sides.
+template <int D>
+ldd::Vec<D> fluid_side_position(const SceneView& view, const FlowSetup<D>& setup,
+                                const ldd::Vec<D>& given) {
+  const double dx = setup.options.dx;
+  const double tolerance = on_face_tolerance * dx, offset = fluid_side_offset * dx;
+  ldd::Vec<D> x = given;
+  for (int pass = 0; pass < D; ++pass)  // a corner where D faces meet
+    for (std::size_t w = 0; w < setup.walls.size(); ++w) {
+      const auto& wall = setup.walls[w];
+      const auto c = wall.closest(x);
+      const std::string& name = setup.wall_names[w];
+      if (wall.thin()) {
+        if (std::abs(c.signed_distance) < offset)
+          input_error(
+              "{} = [{}]: probe '{}' lies on the thin wall '{}' ({:.3g} m from it), which has "
+              "fluid on both sides; move it off the wall, by more than {:.3g} m, to the side "
+              "it measures",
+              view.where("position"), fmt::join(given, ", "), view.string("name"), name,
+              std::abs(c.signed_distance), offset);
+        continue;
+      }
+      if (c.signed_distance < -tolerance)
+        input_error(
+            "{} = [{}]: probe '{}' lies {:.3g} m {}; the nearest point on the fluid side is "
+            "[{:.6g}] m (a probe within {} dx = {:.3g} m of a face measures on it)",
+            view.where("position"), fmt::join(given, ", "), view.string("name"), -c.signed_distance,
+            behind(wall, name), fmt::join(ldd::Vec<D>(c.point + offset * c.normal), ", "),
+            on_face_tolerance, tolerance);
+      if (c.signed_distance < offset) x = c.point + offset * c.normal;
+    }
+  if (x != given)
+    spdlog::info(
+        "probe '{}' at [{}] is on a wall's face: it measures there from the fluid side, "
+        "at [{:.6g}] m",
+        view.string("name"), fmt::join(given, ", "), fmt::join(x, ", "));
+  return x;
 }
 
 template <int D>
@@ -331,13 +433,13 @@ std::vector<coupling::Probe<D>> make_probes(const io::Scene& scene, const FlowSe
     const Eigen::VectorXd position = view.vector("position");
     if (position.size() == D) {
       p.position = position;
-      const double tol = 1e-9 * (upper - lower).norm();
+      const double tol = on_face_tolerance * dx;  // a probe on a face, a hair off the box
       if (((p.position - lower).array() < -tol).any() ||
           ((upper - p.position).array() < -tol).any())
         input_error("{} = [{}] is outside the walls' bounding box [{}] – [{}] m",
                     view.where("position"), fmt::join(position, ", "), fmt::join(lower, ", "),
                     fmt::join(upper, ", "));
-      require_fluid_side<D>(view, setup, p.position);
+      p.position = fluid_side_position<D>(view, setup, p.position);
     }
     p.radius = view.number("radius") > 0.0 ? view.number("radius") : h;
     if (p.kind == coupling::ProbeKind::force) {
@@ -410,19 +512,12 @@ void configure_rigid_wall(ldd::WallMesh<D>& wall) {
   if (!wall.thin() && wall.open_boundary_count() == 0 && wall.enclosed_measure() > 0.0)
     wall.set_solid(true);
 }
-}  // namespace
 
+/// The scene's [[wall]]s from `surfaces` (name → surface), with their motions.
 template <int D>
-FlowSetup<D> flow_setup(const io::Scene& scene,
-                        const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces,
-                        const mesh::SurfaceMesh* structure) {
-  HM_ASSERT(scene.dimension() == D, "a {}-D flow set up from a {}-D scene", D, scene.dimension());
-  if (!is_flow_scene(scene))
-    input_error("{}: the scene has no [fluid] section, so there is no flow to run",
-                scene.file().string());
-  validate_flow_scene(scene);
-  FlowSetup<D> setup;
-  setup.options = flow_options<D>(scene);
+void add_scene_walls(const io::Scene& scene,
+                     const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces,
+                     FlowSetup<D>& setup) {
   for (const SceneView& wall : scene.array("wall")) {
     const std::string name = wall.string("name");
     const auto found = std::find_if(surfaces.begin(), surfaces.end(),
@@ -439,6 +534,21 @@ FlowSetup<D> flow_setup(const io::Scene& scene,
     configure_rigid_wall(setup.walls.back());
     setup.wall_names.push_back(name);
   }
+}
+}  // namespace
+
+template <int D>
+FlowSetup<D> flow_setup(const io::Scene& scene,
+                        const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces,
+                        const mesh::SurfaceMesh* structure) {
+  HM_ASSERT(scene.dimension() == D, "a {}-D flow set up from a {}-D scene", D, scene.dimension());
+  if (!is_flow_scene(scene))
+    input_error("{}: the scene has no [fluid] section, so there is no flow to run",
+                scene.file().string());
+  validate_flow_scene(scene);
+  FlowSetup<D> setup;
+  setup.options = flow_options<D>(scene);
+  add_scene_walls<D>(scene, surfaces, setup);
   if (structure) {
     if (structure->dim != D)
       input_error("{}: the structure's surface is {}-D, the case is {}-D", scene.file().string(),
@@ -451,6 +561,7 @@ FlowSetup<D> flow_setup(const io::Scene& scene,
     setup.wall_names.push_back(structure_wall_name);
   }
   coupling::place_walls<D>(setup.walls, setup.motions, 0.0);
+  check_sides_of_closed_walls<D>(scene, setup);
   seed_regions<D>(scene, setup);
   const SceneView time = scene.section("time");
   setup.time.end = time.number("end");
@@ -459,6 +570,26 @@ FlowSetup<D> flow_setup(const io::Scene& scene,
   setup.time.checkpoint_interval = time.number("checkpoint_interval");
   setup.probes = make_probes<D>(scene, setup);
   return setup;
+}
+
+namespace {
+template <int D>
+void check_flow_geometry(const io::Scene& scene) {
+  FlowSetup<D> setup;
+  setup.options = flow_options<D>(scene);
+  add_scene_walls<D>(scene, scene_wall_surfaces(scene), setup);
+  coupling::place_walls<D>(setup.walls, setup.motions, 0.0);
+  check_sides_of_closed_walls<D>(scene, setup);
+  make_probes<D>(scene, setup);
+}
+}  // namespace
+
+void validate_flow_geometry(const io::Scene& scene) {
+  if (!is_flow_scene(scene)) return;
+  if (scene.dimension() == 2)
+    check_flow_geometry<2>(scene);
+  else
+    check_flow_geometry<3>(scene);
 }
 
 std::vector<std::pair<std::string, mesh::SurfaceMesh>> scene_wall_surfaces(

@@ -41,12 +41,22 @@ bool is_flow_scene(const io::Scene& scene);
 /// among the [[wall]] names. InputError naming the key (file:line: key).
 void validate_flow_scene(const io::Scene& scene);
 
+/// The fluid regions and the probes against the scene's [[wall]]s, meshed here (for --validate:
+/// the walls of a structure are not known without its artefacts): InputError for a fluid region
+/// reaching outside a closed container wall or lying inside a closed obstacle (flip_normals), and
+/// for a pressure or elevation probe inside a solid, outside a container or on a thin wall,
+/// naming the probe, its position and the nearest point on the fluid side (see flow_setup).
+void validate_flow_geometry(const io::Scene& scene);
+
 /// Builds the flow from the scene and the wall surfaces (name → surface, at least the scene's
 /// [[wall]] names). Runs validate_flow_scene first. InputError (naming the scene key) for a
 /// fluid region outside the walls, a probe position outside the walls' bounding box.
 /// `structure`: the structure's surface in a coupled scene (mapped.h5's target surface), added
 /// after the [[wall]]s as the wall structure_wall_name, fixed here (its modes move it), before
-/// the fluid is seeded. A pressure or elevation probe behind a wall is an InputError.
+/// the fluid is seeded. A pressure or elevation probe within 0.05 dx of a wall's face (either
+/// side) measures on the face from the fluid side: it is placed 0.001 dx in front of it, so that
+/// a probe given on an STL face read in single precision does not sit inside the solid. Deeper
+/// behind a face, or on a thin wall, it is an InputError naming the nearest fluid side.
 template <int D>
 FlowSetup<D> flow_setup(const io::Scene& scene,
                         const std::vector<std::pair<std::string, mesh::SurfaceMesh>>& surfaces,

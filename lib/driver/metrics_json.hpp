@@ -17,7 +17,9 @@ inline nlohmann::ordered_json curve_metrics_json(const CurveMetrics& m) {
           {"rms", m.rms},
           {"rms_relative", m.rms_relative},
           {"window_s", {m.window_start, m.window_end}},
-          {"reference_samples", m.samples}};
+          {"reference_samples", m.samples},
+          {"run_samples_missing", m.missing},
+          {"probe_without_fluid", m.without_fluid}};
 }
 
 }  // namespace hm::driver

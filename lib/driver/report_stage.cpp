@@ -26,20 +26,23 @@ constexpr const char* stage_name = "fsi-report";
 namespace ds = io::ds;
 namespace ra = io::results_attr;
 
+/// c at t, linear between samples, clamped at the ends; NaN where a sample it uses is missing.
 double interpolate(const Curve& c, double t) {
   const auto it = std::lower_bound(c.t.begin(), c.t.end(), t);
   if (it == c.t.begin()) return c.v.front();
   if (it == c.t.end()) return c.v.back();
   const auto k = static_cast<std::size_t>(it - c.t.begin());
+  if (*it == t) return c.v[k];
   const double w = (t - c.t[k - 1]) / (c.t[k] - c.t[k - 1]);
   return (1 - w) * c.v[k - 1] + w * c.v[k];
 }
 
-/// The sample of largest magnitude in [a, b]: (value, time).
+/// The sample of largest magnitude in [a, b], missing values left out: (value, time); the time
+/// is NaN when there is no sample.
 std::pair<double, double> peak_in(const Curve& c, double a, double b) {
   std::pair<double, double> best{0.0, std::numeric_limits<double>::quiet_NaN()};
   for (std::size_t k = 0; k < c.t.size(); ++k)
-    if (c.t[k] >= a && c.t[k] <= b &&
+    if (c.t[k] >= a && c.t[k] <= b && !std::isnan(c.v[k]) &&
         (std::isnan(best.second) || std::abs(c.v[k]) > std::abs(best.first)))
       best = {c.v[k], c.t[k]};
   return best;
@@ -151,6 +154,16 @@ std::string metrics_markdown(const std::vector<Comparison>& cs,
         m.reference_peak_time, m.peak_time_error, m.rms, 100 * m.rms_relative, m.window_start,
         m.window_end);
   }
+  for (std::size_t k = 0; k < cs.size(); ++k) {
+    if (ms[k].without_fluid)
+      md += fmt::format("\n`{}` saw no fluid in the window: no metrics against {}.\n", cs[k].column,
+                        cs[k].label);
+    else if (ms[k].missing > 0)
+      md += fmt::format(
+          "\n`{}` had no fluid at {} of the {} reference samples (missing values, left out of "
+          "the RMS).\n",
+          cs[k].column, ms[k].missing, ms[k].samples);
+  }
   return md;
 }
 
@@ -227,8 +240,13 @@ std::string plot_script(const std::filesystem::path& folder, const RunData& run,
   for (std::size_t c = 0; c < run.columns.size(); ++c) {
     const std::string stem = file_stem_of(run.columns[c]);
     write_curve_dat(folder / "data" / (stem + ".dat"), run.probes[c]);
-    std::vector<std::string> series{fmt::format("{} using 1:2 with lines lw 2 title 'hydromodal'",
-                                                gnuplot_quoted("data/" + stem + ".dat"))};
+    // A probe that never saw fluid has no curve (gnuplot refuses a series of missing values).
+    const bool has_values = std::any_of(run.probes[c].v.begin(), run.probes[c].v.end(),
+                                        [](double v) { return !std::isnan(v); });
+    std::vector<std::string> series;
+    if (has_values)
+      series.push_back(fmt::format("{} using 1:2 with lines lw 2 title 'hydromodal'",
+                                   gnuplot_quoted("data/" + stem + ".dat")));
     for (std::size_t k = 0; k < cs.size(); ++k) {
       if (cs[k].column != run.columns[c]) continue;
       const std::string ref = fmt::format("data/{}.ref{}.dat", stem, k);
@@ -236,7 +254,14 @@ std::string plot_script(const std::filesystem::path& folder, const RunData& run,
       series.push_back(fmt::format("{} using 1:2 with linespoints pt 7 ps 0.5 title {}",
                                    gnuplot_quoted(ref), gnuplot_quoted(cs[k].label)));
     }
-    script += plot_header(stem + ".png", run.columns[c], "t [s]", run.columns[c]);
+    if (series.empty()) {
+      spdlog::warn("{}: {} has no value (its probe saw no fluid): no plot", stage_name,
+                   run.columns[c]);
+      continue;
+    }
+    const std::string title =
+        has_values ? run.columns[c] : run.columns[c] + " (no fluid at the probe during the run)";
+    script += plot_header(stem + ".png", title, "t [s]", run.columns[c]);
     script += "plot " + join(series, ", \\\n     ") + "\n";
   }
   if (run.modal.size() > 0) {
@@ -291,24 +316,39 @@ CurveMetrics compare_curves(const Curve& run, const Curve& reference, double win
                 context, run.t.front(), run.t.back(), reference.t.front(), reference.t.back());
   const auto [p, tp] = peak_in(run, m.window_start, m.window_end);
   const auto [q, tq] = peak_in(reference, m.window_start, m.window_end);
-  if (std::isnan(tq) || std::isnan(tp))
+  const bool run_has_samples = std::any_of(run.t.begin(), run.t.end(), [&](double t) {
+    return t >= m.window_start && t <= m.window_end;
+  });
+  if (std::isnan(tq) || !run_has_samples)
     input_error("{}: no sample of the run or the reference in {}–{} s", context, m.window_start,
                 m.window_end);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (std::isnan(tp)) {  // every run sample in the window is missing: the probe saw no fluid
+    m.without_fluid = true;
+    m.peak = m.peak_time = m.peak_error = m.peak_time_error = m.rms = m.rms_relative = nan;
+    m.reference_peak = q;
+    m.reference_peak_time = tq;
+    return m;
+  }
   m.peak = p;
   m.peak_time = tp;
   m.reference_peak = q;
   m.reference_peak_time = tq;
-  m.peak_error = q != 0.0 ? (p - q) / std::abs(q) : std::numeric_limits<double>::quiet_NaN();
+  m.peak_error = q != 0.0 ? (p - q) / std::abs(q) : nan;
   m.peak_time_error = tp - tq;
   double sum = 0.0;
   for (std::size_t k = 0; k < reference.t.size(); ++k) {
     if (reference.t[k] < m.window_start || reference.t[k] > m.window_end) continue;
-    const double d = interpolate(run, reference.t[k]) - reference.v[k];
-    sum += d * d;
     ++m.samples;
+    const double d = interpolate(run, reference.t[k]) - reference.v[k];
+    if (std::isnan(d)) {
+      ++m.missing;
+      continue;
+    }
+    sum += d * d;
   }
-  m.rms = std::sqrt(sum / m.samples);
-  m.rms_relative = q != 0.0 ? m.rms / std::abs(q) : std::numeric_limits<double>::quiet_NaN();
+  m.rms = m.samples > m.missing ? std::sqrt(sum / (m.samples - m.missing)) : nan;
+  m.rms_relative = q != 0.0 ? m.rms / std::abs(q) : nan;
   return m;
 }
 
@@ -397,6 +437,11 @@ void run_report_stage(const io::Scene& scene, const std::filesystem::path& resul
         std::find(run.columns.begin(), run.columns.end(), c.column) - run.columns.begin());
     ms.push_back(compare_curves(run.probes[column], c.reference, window_start, window_end,
                                 fmt::format("{} against {}", c.column, c.file.string())));
+    if (ms.back().without_fluid)
+      spdlog::warn(
+          "{}: {} has no value in the window (its probe saw no fluid): its metrics against {} "
+          "are missing (NaN; probe_without_fluid in metrics.json)",
+          stage_name, c.column, c.label);
   }
 
   // Everything is written into a fresh folder beside the report's and renamed over it.

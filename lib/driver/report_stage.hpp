@@ -34,10 +34,18 @@ struct CurveMetrics {
   double rms = 0.0, rms_relative = 0.0;
   double window_start = 0.0, window_end = 0.0;  ///< [s]
   int samples = 0;                              ///< reference samples in the window
+  /// Reference samples in the window where the run has no value (its probe was dry at a
+  /// neighbouring sample: a missing value, NaN), left out of the RMS.
+  int missing = 0;
+  /// The run has no value at all in the window (its probe saw no fluid): the metrics are NaN.
+  bool without_fluid = false;
 };
 
 /// The metrics of `run` against `reference` in [window_start, window_end] (NaN: open) cut to
-/// where both curves exist. InputError when that is empty or holds no reference sample.
+/// where both curves exist. Missing run values (NaN: a dry probe) are left out: of the peak, and
+/// of the RMS at the reference samples next to them (counted in `missing`); a run with no value in
+/// the window gives NaN metrics and without_fluid. InputError when the window is empty or holds
+/// no sample of either curve.
 CurveMetrics compare_curves(const Curve& run, const Curve& reference, double window_start,
                             double window_end, const std::string& context);
 

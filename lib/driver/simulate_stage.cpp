@@ -728,6 +728,9 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   write_monitors(w, r.monitors);
   write_phase_totals(w, r.phase_totals);
   write_probes(w, r.probes, columns);
+  const std::vector<std::string> dry = coupling::probes_without_fluid<D>(
+      setup.probes, std::span<const std::vector<double>>(r.probes.rows));
+  w.set_attribute(ra::probes_without_fluid, join(dry, ","));
   if (!bodies.empty()) write_coupling<D>(w, r, bodies.front(), free);
   if (!completed) w.set_attribute(io::attr::status, "diverged: " + first_line(r.divergence_report));
   w.set_attribute(ra::run_status, std::string(coupling::to_string(r.status)));
@@ -749,6 +752,11 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
       stage_name, coupling::to_string(r.status), r.end_time, r.monitors.size(), r.wall_seconds,
       steps * fluid_points / std::max(r.wall_seconds, 1e-9), output.string(), r.snapshots,
       (folder / "snapshots").string());
+  if (!dry.empty())
+    spdlog::warn(
+        "{}: probe(s) {} saw no fluid at any sample of the run: their columns hold missing "
+        "values (nan) only (a force probe: 0 N); is the probe where the fluid goes?",
+        stage_name, join(dry, ", "));
   if (!completed)
     numerical_error(
         "{}: the flow diverged at t = {} s; {} keeps the run up to then (status "

@@ -13,6 +13,7 @@
 #include <assimp/Importer.hpp>
 
 #include "core/errors.hpp"
+#include "geometry/surface_formats.hpp"
 
 namespace hm::geometry {
 namespace {
@@ -70,6 +71,18 @@ mesh::SurfaceMesh to_surface(const Soup& soup) {
 }  // namespace
 
 mesh::SurfaceMesh read_surface_file(const std::filesystem::path& path) {
+  if (!std::filesystem::is_regular_file(path))
+    input_error("geometry file '{}' does not exist (or is not a regular file)", path.string());
+  if (std::optional<SurfaceFile> known = read_known_surface_format(path)) {
+    if (known->skipped > 0)
+      spdlog::warn("geometry file '{}': skipped {} faces that are points or lines", path.string(),
+                   known->skipped);
+    if (known->surface.cells.rows() == 0)
+      input_error("geometry file '{}' holds no triangle; expected a triangulated surface",
+                  path.string());
+    merge_identical_vertices(known->surface);
+    return std::move(known->surface);
+  }
   Assimp::Importer importer;
   const aiScene* scene = import_scene(importer, path);
   Soup soup;

@@ -1,6 +1,6 @@
 #pragma once
-// Triangle surfaces from files (STL, OBJ, PLY and the other formats assimp reads) and a small
-// ASCII STL writer. Coordinates are taken as metres, as written in the file.
+// Triangle surfaces from files (STL, OBJ, PLY read here; the other formats assimp reads) and a
+// small ASCII STL writer. Coordinates are taken as metres, as written in the file.
 #include <filesystem>
 #include <string_view>
 
@@ -8,10 +8,12 @@
 
 namespace hm::geometry {
 
-/// Reads every mesh of the file with assimp (JoinIdenticalVertices | Triangulate |
-/// PreTransformVertices), merges bit-identical vertices across meshes and returns one 3-D
-/// triangle surface. Points and lines in the file are skipped with a warning.
-/// Throws InputError naming the file when it is missing, unreadable or holds no triangle.
+/// Reads a triangle surface: STL, OBJ and PLY with hydromodal's own readers (surface_formats.hpp:
+/// ASCII numbers in double precision, malformed files refused), any other format assimp reads
+/// with assimp (JoinIdenticalVertices | Triangulate | PreTransformVertices); merges bit-identical
+/// vertices and returns one 3-D triangle surface. Points and lines in the file are skipped with
+/// a warning. Throws InputError naming the file when it is missing, malformed or holds no
+/// triangle.
 mesh::SurfaceMesh read_surface_file(const std::filesystem::path& path);
 
 /// Merges vertices with identical coordinates and renumbers the cells (first occurrence wins).

@@ -286,7 +286,7 @@ void write_dataset(hid_t file, const std::string& path, hid_t memtype, hid_t fil
 void ArtefactWriter::write(const std::string& path, const double* data, const Dims& dims) {
   const DatasetSpec& spec = declared(path, DType::f64, dims);
   for (std::uint64_t i = 0; i < product(dims); ++i)
-    if (!std::isfinite(data[i]))
+    if (!std::isfinite(data[i]) && !(spec.missing_values && std::isnan(data[i])))
       numerical_error(
           "refusing to write a non-finite value ({}) into dataset '{}' at flat index {}", data[i],
           path, i);
@@ -546,11 +546,11 @@ std::string staleness(const std::filesystem::path& output, const std::string& st
   if (p.tool_version != tool_version())
     return fmt::format("the tool changed ({} → {})", p.tool_version, tool_version());
   if (p.parameters_sha256 != sha256_text(parameters)) return "the scene parameters changed";
-  for (const auto& [role, path] : inputs) {
+  for (const auto& input : inputs) {
     const auto recorded = std::find_if(p.inputs.begin(), p.inputs.end(),
-                                       [&](const InputRecord& r) { return r.role == role; });
-    if (recorded == p.inputs.end() || recorded->path != path)
-      return fmt::format("input '{}' is now '{}'", role, path);
+                                       [&](const InputRecord& r) { return r.role == input.first; });
+    if (recorded == p.inputs.end() || recorded->path != input.second)
+      return fmt::format("input '{}' is now '{}'", input.first, input.second);
   }
   for (const auto& input : p.inputs) {
     if (input.role == "scene") continue;

@@ -109,6 +109,8 @@ std::vector<PathSegment> override_path(const std::string& setting, const std::st
     PathSegment segment{part, std::nullopt};
     if (const auto open = part.find('['); open != std::string::npos) {
       const auto close = part.find(']', open);
+      if (close == std::string::npos)  // found by fuzzing: "wall[0" once read past the text
+        input_error("--set {}: '{}' is not a key or key[index] (no closing ']')", setting, part);
       std::size_t index = 0;
       const char* first = part.data() + open + 1;
       const auto [end, error] = std::from_chars(first, part.data() + close, index);

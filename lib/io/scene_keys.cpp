@@ -181,7 +181,11 @@ const std::vector<KeyDecl>& scene_keys() {
       number("wall[].mesh_size", "", "m", 0, inf, "target edge length of the wall mesh", mesh_stage,
              true),
       boolean("wall[].flip_normals", "false",
-              "reverse the normals of a file wall whose fluid side is the other one", mesh_stage),
+              "reverse the normals of a file wall whose fluid side is the other one. A closed "
+              "surface file is a container (the fluid inside) as read; true makes it an obstacle "
+              "(the fluid around it). A fluid region outside a container or inside an obstacle "
+              "is an error",
+              mesh_stage),
       boolean("wall[].thin", "false",
               "the wall is wetted on both sides (a baffle or gate): pairs through it are cut and "
               "wall nodes are sampled on both sides",
@@ -519,7 +523,7 @@ const std::vector<KeyDecl>& scene_keys() {
               modes_stage),
 
       // [report], [[report.compare]]
-      vector("report.window", "[]", "s", 0,
+      vector("report.window", "[]", "s", 2,
              "time window [t0, t1] of the RMS differences (empty: where run and reference "
              "overlap)",
              report_stage),

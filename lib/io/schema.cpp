@@ -53,6 +53,12 @@ static DatasetSpec optional(DatasetSpec spec) {
   return spec;
 }
 
+/// A dataset whose NaNs are missing values (DatasetSpec::missing_values).
+static DatasetSpec with_missing_values(DatasetSpec spec) {
+  spec.missing_values = true;
+  return spec;
+}
+
 const SchemaSpec& mesh_schema() {
   static const SchemaSpec spec{
       schema::mesh,
@@ -301,8 +307,9 @@ const SchemaSpec& mapped_modes_schema() {
            DType::f64,
            {"n_modes"},
            "1",
-           "leave-some-out estimate of the interpolation error of each mode: max |error| / max "
-           "|mode|"},
+           "interpolation error of each mode, max |error| / max |mode|: measured at the targets "
+           "when every target vertex is a structure surface node (the identity map: round-off), "
+           "else the leave-some-out estimate (every 10th node left out)"},
           optional({ds::mapped_basis,
                     DType::f64,
                     {"n_basis", "n_target", "dim"},
@@ -332,7 +339,7 @@ const SchemaSpec& mapped_modes_schema() {
                     DType::f64,
                     {"n_basis"},
                     "1",
-                    "leave-some-out estimate of the interpolation error of each basis vector"}),
+                    "interpolation error of each basis vector, as /quality/field_error"}),
       },
       1};
   return spec;
@@ -347,7 +354,10 @@ const SchemaSpec& results_schema() {
       "divergence_report (the report text of a diverged run, else empty), wall_seconds, steps, "
       "points (fluid points at the start), end_time [s], snapshots, dx [m], support (h) [m], "
       "probe_columns (the names of the columns of /probes/values as in the CSV header, "
-      "comma-separated), dt_limit_names (the names of the /monitors/dt_limit codes in code order: "
+      "comma-separated; a sample with no fluid in a probe's support is NaN, a missing value), "
+      "probes_without_fluid (the probes that saw no fluid at any sample, comma-separated; empty "
+      "when every probe did), dt_limit_names (the names of the /monitors/dt_limit codes in code "
+      "order: "
       "cfl, viscous, acceleration, maximum, output) and phase_names (the entries of "
       "/run/phase_seconds); a coupled run also coupling_scheme, max_structure_stretch, "
       "max_structure_deformation [m], max_structure_pressure [Pa], coupling_seconds, "
@@ -359,12 +369,14 @@ const SchemaSpec& results_schema() {
       "/modal ones instead; a coupled run (fluid and structure) both.",
       {
           optional({ds::probe_time, DType::f64, {"n_probe_rows"}, "s", "times of the probe rows"}),
-          optional({ds::probe_values,
-                    DType::f64,
-                    {"n_probe_rows", "n_probe_columns"},
-                    "column",
-                    "probe values, one row per probe time, one column per name of the "
-                    "probe_columns attribute (its unit in brackets: Pa, m or N)"}),
+          with_missing_values(
+              optional({ds::probe_values,
+                        DType::f64,
+                        {"n_probe_rows", "n_probe_columns"},
+                        "column",
+                        "probe values, one row per probe time, one column per name of the "
+                        "probe_columns attribute (its unit in brackets: Pa, m or N); NaN: no "
+                        "fluid at the probe (a missing value)"})),
           optional({ds::monitor_step, DType::i64, {"n_steps"}, "", "step number, from 1"}),
           optional({ds::monitor_time, DType::f64, {"n_steps"}, "s", "time at the end of the step"}),
           optional({ds::monitor_dt, DType::f64, {"n_steps"}, "s", "time step"}),
@@ -602,8 +614,8 @@ const SchemaSpec& checkpoint_schema() {
               "the CouplingMonitors of every step so far, packed", false),
           f64("/run/phase_totals", {"n_phases"}, "s", "phase seconds so far"),
           f64("/run/probe_time", {"n_probe_rows"}, "s", "probe times so far", false),
-          f64("/run/probe_values", {"n_probe_rows", "n_probe_columns"}, "column",
-              "probe rows so far", false),
+          with_missing_values(f64("/run/probe_values", {"n_probe_rows", "n_probe_columns"},
+                                  "column", "probe rows so far (NaN: a missing value)", false)),
           f64("/run/modal", {"n_bodies", "n_modal_rows", "n_modal_fields"}, "column",
               "per body and modal row: t, y, v, F", false),
       }};

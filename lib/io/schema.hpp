@@ -22,6 +22,9 @@ struct DatasetSpec {
   std::string unit;                ///< SI unit, "1" for dimensionless, "" for indices/labels
   std::string doc;
   bool required = true;
+  /// NaN marks a missing value (a probe with no fluid at a sample); other non-finite values are
+  /// still refused. Off: every value must be finite.
+  bool missing_values = false;
 };
 
 struct SchemaSpec {
@@ -179,10 +182,13 @@ inline constexpr const char* run_status = "run_status";  ///< "completed" or "di
 inline constexpr const char* divergence_report = "divergence_report";  ///< "" when completed
 inline constexpr const char* wall_seconds = "wall_seconds";            ///< run time [s]
 inline constexpr const char* steps = "steps";                          ///< time steps taken
-inline constexpr const char* points = "points";                  ///< fluid points at the start
-inline constexpr const char* end_time = "end_time";              ///< physical time reached [s]
-inline constexpr const char* snapshots = "snapshots";            ///< snapshots written
-inline constexpr const char* probe_columns = "probe_columns";    ///< CSV names, comma-separated
+inline constexpr const char* points = "points";                ///< fluid points at the start
+inline constexpr const char* end_time = "end_time";            ///< physical time reached [s]
+inline constexpr const char* snapshots = "snapshots";          ///< snapshots written
+inline constexpr const char* probe_columns = "probe_columns";  ///< CSV names, comma-separated
+/// The probes that saw no fluid at any sample of the run (their values all missing; a force
+/// probe's all 0), comma-separated; "" when every probe saw fluid.
+inline constexpr const char* probes_without_fluid = "probes_without_fluid";
 inline constexpr const char* dt_limit_names = "dt_limit_names";  ///< code → name, comma-separated
 inline constexpr const char* phase_names = "phase_names";        ///< /run/phase_seconds entries
 inline constexpr const char* dx = "dx";                          ///< [m]

@@ -5,6 +5,7 @@
 // snapshots/ are written next to results.h5. The scene-stage shape of stage_main (echo, --validate,
 // --if-stale), with optional inputs: without --mesh the walls are meshed from the scene (fsi-mesh
 // needs a [structure]).
+#include "driver/flow_setup.hpp"
 #include "driver/simulate_stage.hpp"
 #include "io/artefact.hpp"
 #include "linsolve/linear_solver.hpp"
@@ -21,6 +22,7 @@ void simulate(const hm::stages::StageArgs& args) {
                scene.parameters_for(name));
   if (args.validate) {
     hm::driver::validate_simulate_scene(scene);
+    hm::driver::validate_flow_geometry(scene);
     spdlog::info("{}: {} is valid for this stage", name, args.positional);
     return;
   }

@@ -7,7 +7,9 @@
 // same flow.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <fstream>
 
@@ -30,21 +32,26 @@ constexpr double leg = 0.020, thickness = 0.004, width = 0.020;  // m
 const Vec<3> corner(0.05, 0.01, 0.0);                            // m: the bracket's lower corner
 constexpr double depth = 0.03, dx = 0.002, rho_g = 1000.0 * 9.81;
 
-/// Writes the bracket as an ASCII STL: every face a grid of squares of side `step` (a divisor
-/// of the dimensions, so that the faces' grids conform), two triangles each, normals outward.
+/// Writes the bracket as a binary STL (single precision, as the numbers of this test were
+/// measured with: the dam break's largest PPE iteration count moves from 291 to 384 when the same
+/// mesh is read in double precision from ASCII, a change of 1e-8 m in the vertices): every face a
+/// grid of squares of side `step` (a divisor of the dimensions, so that the faces' grids
+/// conform), two triangles each, normals outward.
 void write_bracket_stl(const fs::path& file, double step) {
-  std::ofstream out(file);
-  out << "solid bracket\n";
+  std::vector<std::array<float, 12>> records;
   auto facet = [&](const Vec<3>& p, const Vec<3>& q, const Vec<3>& r, const Vec<3>& outward) {
     const Vec<3> n = (q - p).cross(r - p);
     const bool flip = n.dot(outward) < 0.0;
     const Vec<3>& b = flip ? r : q;
     const Vec<3>& c = flip ? q : r;
-    out << " facet normal " << outward.x() << ' ' << outward.y() << ' ' << outward.z()
-        << "\n  outer loop\n";
+    std::array<float, 12> record{};
+    for (int a = 0; a < 3; ++a)
+      record[static_cast<std::size_t>(a)] = static_cast<float>(outward[a]);
+    int k = 3;
     for (const Vec<3>* v : {&p, &b, &c})
-      out << "   vertex " << (*v).x() << ' ' << (*v).y() << ' ' << (*v).z() << '\n';
-    out << "  endloop\n endfacet\n";
+      for (int a = 0; a < 3; ++a)
+        record[static_cast<std::size_t>(k++)] = static_cast<float>((*v)[a]);
+    records.push_back(record);
   };
   auto rectangle = [&](const Vec<3>& origin, const Vec<3>& e1, const Vec<3>& e2,
                        const Vec<3>& outward) {
@@ -57,7 +64,6 @@ void write_bracket_stl(const fs::path& file, double step) {
         facet(at(i, j), at(i + 1, j + 1), at(i, j + 1), outward);
       }
   };
-  out.precision(10);
   const double a = leg, t = thickness;
   const std::vector<std::array<double, 2>> section{{0, 0}, {a, 0}, {a, t}, {t, t}, {t, a}, {0, a}};
   const std::vector<std::array<double, 2>> outward{{0, -1}, {1, 0}, {0, 1},
@@ -74,7 +80,14 @@ void write_bracket_stl(const fs::path& file, double step) {
     rectangle(corner + Vec<3>(0, y, 0), Vec<3>(a, 0, 0), Vec<3>(0, 0, t), side);
     rectangle(corner + Vec<3>(0, y, t), Vec<3>(t, 0, 0), Vec<3>(0, 0, a - t), side);
   }
-  out << "endsolid bracket\n";
+  std::ofstream out(file, std::ios::binary);
+  out << std::string(80, ' ');
+  const auto count = static_cast<std::uint32_t>(records.size());
+  out.write(reinterpret_cast<const char*>(&count), 4);  // little-endian host (x86-64)
+  for (const auto& record : records) {
+    out.write(reinterpret_cast<const char*>(record.data()), 48);
+    out.write("\0\0", 2);
+  }
 }
 
 std::string scene_text(const std::string& stl, const std::array<double, 3>& water) {

@@ -43,6 +43,31 @@ TEST(Report, MetricsOfKnownCurves) {
   EXPECT_THROW(compare_curves(run, later, nan, nan, "test"), InputError);
 }
 
+// A probe dry for t < 0.4 (missing values, NaN) and v = 2t after: the peak and the RMS leave the
+// missing samples out (the reference samples at 0 and 0.25 are counted as missing); a run with no
+// value at all gives NaN metrics flagged without_fluid, not an error.
+TEST(Report, MissingRunValuesAreLeftOutOfTheMetrics) {
+  Curve run, reference;
+  for (int k = 0; k <= 100; ++k) {
+    run.t.push_back(k / 100.0);
+    run.v.push_back(k < 40 ? nan : 2 * k / 100.0);
+  }
+  reference.t = {0.0, 0.25, 0.5, 1.0};
+  reference.v = {0.0, 0.25, 0.5, 1.0};
+  const CurveMetrics m = compare_curves(run, reference, nan, nan, "test");
+  EXPECT_DOUBLE_EQ(m.peak, 2.0);
+  EXPECT_EQ(m.samples, 4);
+  EXPECT_EQ(m.missing, 2);
+  EXPECT_NEAR(m.rms, std::sqrt((0.25 + 1.0) / 2), 1e-15);
+  EXPECT_FALSE(m.without_fluid);
+  for (double& v : run.v) v = nan;
+  const CurveMetrics dry = compare_curves(run, reference, nan, nan, "test");
+  EXPECT_TRUE(dry.without_fluid);
+  EXPECT_TRUE(std::isnan(dry.peak));
+  EXPECT_TRUE(std::isnan(dry.rms));
+  EXPECT_DOUBLE_EQ(dry.reference_peak, 1.0);
+}
+
 TEST(Report, ReferenceCsvIsSortedScaledAndShifted) {
   const auto dir = test::fresh_dir("report_csv");
   {

@@ -191,4 +191,7 @@ TEST(Scene, OverridesReplaceAndAreValidated) {
   EXPECT_NE(override_error({"modes.count=[1,"}).find("is not a TOML value"), std::string::npos);
   EXPECT_NE(override_error({"structure.group[x].name=a"}).find("is not a key or key[index]"),
             std::string::npos);
+  // Found by fuzzing (tests/fuzz/regressions/scene): an index without its ']' was read past the
+  // end of the text.
+  EXPECT_NE(override_error({"structure.group[0=a"}).find("(no closing ']')"), std::string::npos);
 }
