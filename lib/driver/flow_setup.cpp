@@ -1,11 +1,14 @@
 #include "driver/flow_setup.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <fstream>
 #include <set>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
+#include <Eigen/Geometry>
 
 #include "core/errors.hpp"
 #include "core/text.hpp"
@@ -321,6 +324,67 @@ void check_sides_of_closed_walls(const io::Scene& scene, const FlowSetup<D>& set
   }
 }
 
+/// Memory a run takes per point (fluid point or wall node) [bytes]: the point set, its neighbour
+/// lists and operator weights, the PPE matrix and the preconditioner's setup. Measured as the
+/// slope of fsi-simulate's peak resident memory between two resolutions (first steps): 2-D
+/// dambreak_lobovsky smoke at dx 5 / 2.5 mm (8 088 / 30 576 points, BoomerAMG): 118 / 165 MB,
+/// 2 130 bytes a point; 3-D hydrostatic_tank_3d smoke at dx 12.5 / 8.33 mm (16 172 / 47 487
+/// points, Jacobi): 155 / 272 MB, 3 710 bytes a point. Taken twice over (a 3-D AMG setup, what
+/// grows over a run).
+constexpr double bytes_per_point_2d = 2.0 * 2130.0, bytes_per_point_3d = 2.0 * 3710.0;
+
+/// Memory this process may still take [bytes]: MemAvailable of /proc/meminfo (0 when unknown).
+double available_memory() {
+  std::ifstream meminfo("/proc/meminfo");
+  std::string key, unit;
+  double kib = 0.0;
+  while (meminfo >> key >> kib >> unit)
+    if (key == "MemAvailable:") return kib * 1024.0;
+  return 0.0;
+}
+
+/// The wall measure [m in 2-D, m² in 3-D] of a wall mesh.
+template <int D>
+double wall_measure(const ldd::WallMesh<D>& wall) {
+  double sum = 0.0;
+  for (ldd::Index e = 0; e < wall.element_count(); ++e) {
+    const auto& c = wall.element(e);
+    const auto& x = wall.vertices();
+    if constexpr (D == 2)
+      sum += (x[c[1]] - x[c[0]]).norm();
+    else
+      sum += 0.5 * (x[c[1]] - x[c[0]]).cross(x[c[2]] - x[c[0]]).norm();
+  }
+  return sum;
+}
+
+/// Refuses, before anything is seeded, a run whose points would not fit in the memory available:
+/// an out-of-memory kill halfway through a run (or of the seeding itself) tells the user nothing.
+/// InputError with the estimate (points, bytes) and the largest dx that fits.
+template <int D>
+void check_memory_fits(const io::Scene& scene, const FlowSetup<D>& setup) {
+  const double dx = setup.options.dx;
+  double fluid = 0.0, wall = 0.0;
+  for (const SceneView& region : scene.array("fluid.region"))
+    fluid += vec_of<D>(region.vector("size")).prod() / std::pow(dx, D);
+  const double spacing = setup.options.wall_node_spacing * dx;
+  for (const auto& w : setup.walls)
+    wall += (w.thin() ? 2.0 : 1.0) * wall_measure(w) / std::pow(spacing, D - 1);
+  const double per_point = D == 2 ? bytes_per_point_2d : bytes_per_point_3d;
+  const double need = (fluid + wall) * per_point, have = 0.9 * available_memory();
+  if (have <= 0.0 || need <= have) return;
+  // Fluid points scale as dx^-D, wall nodes as dx^-(D-1): the dx at which the sum fits.
+  double fit = dx;
+  while ((fluid * std::pow(dx / fit, D) + wall * std::pow(dx / fit, D - 1)) * per_point > have)
+    fit *= 1.05;
+  input_error(
+      "{}: fluid.dx = {} m gives about {:.3g} fluid points and {:.3g} wall nodes, which need about "
+      "{:.3g} GiB ({:.0f} bytes a point); this machine has {:.3g} GiB available. The largest dx "
+      "that fits is about {:.3g} m",
+      scene.where("fluid.dx"), dx, fluid, wall, need / 1073741824.0, per_point,
+      have / 0.9 / 1073741824.0, fit);
+}
+
 /// Seeds every region; points of a region inside an earlier region are left out (the earlier
 /// region fills the overlap).
 template <int D>
@@ -562,6 +626,7 @@ FlowSetup<D> flow_setup(const io::Scene& scene,
   }
   coupling::place_walls<D>(setup.walls, setup.motions, 0.0);
   check_sides_of_closed_walls<D>(scene, setup);
+  check_memory_fits<D>(scene, setup);
   seed_regions<D>(scene, setup);
   const SceneView time = scene.section("time");
   setup.time.end = time.number("end");
@@ -580,6 +645,7 @@ void check_flow_geometry(const io::Scene& scene) {
   add_scene_walls<D>(scene, scene_wall_surfaces(scene), setup);
   coupling::place_walls<D>(setup.walls, setup.motions, 0.0);
   check_sides_of_closed_walls<D>(scene, setup);
+  check_memory_fits<D>(scene, setup);
   make_probes<D>(scene, setup);
 }
 }  // namespace
