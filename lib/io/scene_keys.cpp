@@ -402,9 +402,10 @@ const std::vector<KeyDecl>& scene_keys() {
               "with it at dx = 5 mm); off, the fluid holds on to the structure",
               simulate_stage),
       text("coupling.moves_with", "\"\"", {},
-           "name of the [[wall]] (a tank in sway or a translating table motion) the structure is "
-           "clamped to: it moves with it, its modes relative to it, loaded by the base "
-           "excitation −Γ·Ẍ; empty: fixed in space. A rotating tank is not supported yet",
+           "name of the [[wall]] in motion (sway, roll or a table) the structure is clamped to: "
+           "it moves with it, its modes relative to it, loaded by the base excitation "
+           "Γ·Rᵀ(g − Ẍ) and, in a rotating tank, the Euler term −Γ_rot·α about the pivot "
+           "(centrifugal and Coriolis terms left out); empty: fixed in space",
            simulate_stage),
       boolean("coupling.viscous_traction", "false",
               "add the fluid's wall shear μ ∂u_t/∂n (μ = ρν, one-sided from the fluid points in "
