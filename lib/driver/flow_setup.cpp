@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 
 #include "core/errors.hpp"
+#include "core/memory.hpp"
 #include "core/text.hpp"
 #include "driver/wall_io.hpp"
 #include "ldd/seeding.hpp"
@@ -333,16 +334,6 @@ void check_sides_of_closed_walls(const io::Scene& scene, const FlowSetup<D>& set
 /// grows over a run).
 constexpr double bytes_per_point_2d = 2.0 * 2130.0, bytes_per_point_3d = 2.0 * 3710.0;
 
-/// Memory this process may still take [bytes]: MemAvailable of /proc/meminfo (0 when unknown).
-double available_memory() {
-  std::ifstream meminfo("/proc/meminfo");
-  std::string key, unit;
-  double kib = 0.0;
-  while (meminfo >> key >> kib >> unit)
-    if (key == "MemAvailable:") return kib * 1024.0;
-  return 0.0;
-}
-
 /// The wall measure [m in 2-D, m² in 3-D] of a wall mesh.
 template <int D>
 double wall_measure(const ldd::WallMesh<D>& wall) {
@@ -381,8 +372,8 @@ void check_memory_fits(const io::Scene& scene, const FlowSetup<D>& setup) {
       "{}: fluid.dx = {} m gives about {:.3g} fluid points and {:.3g} wall nodes, which need about "
       "{:.3g} GiB ({:.0f} bytes a point); this machine has {:.3g} GiB available. The largest dx "
       "that fits is about {:.3g} m",
-      scene.where("fluid.dx"), dx, fluid, wall, need / 1073741824.0, per_point,
-      have / 0.9 / 1073741824.0, fit);
+      scene.where("fluid.dx"), dx, fluid, wall, gibibytes(need), per_point, gibibytes(have / 0.9),
+      fit);
 }
 
 /// Seeds every region; points of a region inside an earlier region are left out (the earlier
@@ -662,34 +653,8 @@ std::vector<std::pair<std::string, mesh::SurfaceMesh>> scene_wall_surfaces(
     const io::Scene& scene, std::vector<std::filesystem::path>* files) {
   std::vector<std::pair<std::string, mesh::SurfaceMesh>> surfaces;
   for (const SceneView& wall : scene.array("wall")) {
-    mesh::WallOptions options;
-    options.dim = scene.dimension();
-    options.size = wall.number("mesh_size");
-    options.faces = wall.strings("faces");
-    options.flip_normals = wall.boolean("flip_normals");
-    const std::string kind = wall.string("kind");
-    const auto primitive = [&](const std::string& key) {
-      const Eigen::VectorXd v = wall.vector(key);
-      if (v.size() == 0)
-        input_error("{}: {} is required for kind = \"{}\"", wall.file().string(), wall.full(key),
-                    kind);
-      return v;
-    };
-    if ((kind == "rectangle" && options.dim != 2) || (kind == "box" && options.dim != 3))
-      input_error("{}: kind = \"{}\" needs case.dimension = {}", wall.where("kind"), kind,
-                  kind == "rectangle" ? 2 : 3);
-    mesh::SurfaceMesh surface;
-    if (kind == "rectangle") {
-      surface = mesh::mesh_rectangle_walls({primitive("origin"), primitive("size")}, options);
-    } else if (kind == "box") {
-      surface = mesh::mesh_box_walls({primitive("origin"), primitive("size")}, options);
-    } else {
-      const std::filesystem::path file = wall.file_path("file");
-      if (!std::filesystem::exists(file))
-        input_error("{}: wall surface file '{}' does not exist", wall.where("file"), file.string());
-      surface = mesh::mesh_wall_file(file, options);
-      if (files) files->push_back(file);
-    }
+    mesh::SurfaceMesh surface = mesh_scene_wall(wall, scene.dimension());
+    if (files && wall.string("kind") == "file") files->push_back(wall.file_path("file"));
     surfaces.emplace_back(wall.string("name"), std::move(surface));
   }
   return surfaces;

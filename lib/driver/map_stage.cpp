@@ -8,6 +8,7 @@
 
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "driver/length_unit.hpp"
 #include "geometry/surface_checks.hpp"
 #include "geometry/surface_io.hpp"
 #include "io/artefact.hpp"
@@ -70,7 +71,12 @@ SourceModes read_source_modes(const io::ArtefactReader& r) {
 /// mesh fine enough for thin plates has a boundary far finer than the fluid needs).
 mesh::SurfaceMesh read_target_file(const io::Scene& scene) {
   const std::filesystem::path file = scene.file_path("map.file");
-  if (file.extension() != ".geo") return geometry::read_surface_file(file);
+  const double scale = file_length_scale(scene, "map.length_unit", file);
+  if (file.extension() != ".geo") {
+    mesh::SurfaceMesh surface = geometry::read_surface_file(file);
+    surface.vertices *= scale;
+    return surface;
+  }
   mesh::WallOptions o;
   o.dim = scene.dimension();
   o.size = scene.number("map.mesh_size");

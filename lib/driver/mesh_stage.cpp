@@ -5,7 +5,9 @@
 
 #include "core/errors.hpp"
 #include "core/log.hpp"
+#include "driver/length_unit.hpp"
 #include "driver/structure_io.hpp"
+#include "driver/wall_io.hpp"
 #include "io/artefact.hpp"
 #include "mesh/boundary.hpp"
 #include "mesh/quality.hpp"
@@ -46,6 +48,20 @@ void check_kind_matches_dimension(const io::Scene& scene) {
                 scene.file_path("structure.geometry.file").string());
 }
 
+/// Metres per unit of the structure's geometry file; a primitive is in metres.
+double structure_length_scale(const io::Scene& scene) {
+  const std::string kind = scene.string("structure.geometry.kind");
+  if (kind == "file")
+    return file_length_scale(scene, "structure.geometry.length_unit",
+                             scene.file_path("structure.geometry.file"));
+  if (scene.string("structure.geometry.length_unit") != "m")
+    input_error(
+        "{}: length_unit applies to a geometry file (kind = \"file\"); a {} is given in "
+        "metres",
+        scene.where("structure.geometry.length_unit"), kind);
+  return 1.0;
+}
+
 mesh::StructureMesh mesh_structure(const io::Scene& scene, const mesh::MeshOptions& options) {
   const std::string kind = scene.string("structure.geometry.kind");
   if (kind == "rectangle") {
@@ -77,51 +93,12 @@ std::vector<io::InputRecord> mesh_inputs(const io::Scene& scene) {
   return inputs;
 }
 
-Eigen::VectorXd wall_vector(const io::SceneView& wall, const std::string& key) {
-  const Eigen::VectorXd v = wall.vector(key);
-  if (v.size() == 0)
-    input_error("{}: {} is required for kind = \"{}\"", wall.file().string(), wall.full(key),
-                wall.string("kind"));
-  return v;
-}
-
-void validate_wall(const io::SceneView& wall, int dim) {
-  const std::string kind = wall.string("kind");
-  if ((kind == "rectangle" && dim != 2) || (kind == "box" && dim != 3))
-    input_error("{}: kind = \"{}\" needs case.dimension = {}", wall.where("kind"), kind,
-                kind == "rectangle" ? 2 : 3);
-  if (kind == "file") {
-    if (!std::filesystem::exists(wall.file_path("file")))
-      input_error("{}: wall surface file '{}' does not exist", wall.where("file"),
-                  wall.file_path("file").string());
-    return;
-  }
-  wall_vector(wall, "origin");
-  if ((wall_vector(wall, "size").array() <= 0).any())
-    input_error("{}: every edge length must be > 0 m", wall.where("size"));
-}
-
-mesh::SurfaceMesh mesh_wall(const io::SceneView& wall, int dim) {
-  mesh::WallOptions options;
-  options.dim = dim;
-  options.size = wall.number("mesh_size");
-  options.faces = wall.strings("faces");
-  options.flip_normals = wall.boolean("flip_normals");
-  const std::string kind = wall.string("kind");
-  if (kind == "rectangle")
-    return mesh::mesh_rectangle_walls({wall_vector(wall, "origin"), wall_vector(wall, "size")},
-                                      options);
-  if (kind == "box")
-    return mesh::mesh_box_walls({wall_vector(wall, "origin"), wall_vector(wall, "size")}, options);
-  return mesh::mesh_wall_file(wall.file_path("file"), options);
-}
-
 std::map<std::string, mesh::SurfaceMesh> write_walls(io::ArtefactWriter& writer,
                                                      const io::Scene& scene) {
   std::map<std::string, mesh::SurfaceMesh> walls;
   for (const auto& wall : scene.array("wall")) {
     const mesh::SurfaceMesh& surface = walls[wall.string("name")] =
-        mesh_wall(wall, scene.dimension());
+        mesh_scene_wall(wall, scene.dimension());
     const std::string prefix = io::ds::walls + wall.string("name");
     writer.write(prefix + "/vertices", io::MatrixRM(surface.vertices));
     writer.write(prefix + "/cells", io::IndexMatrixRM(surface.cells));
@@ -140,6 +117,7 @@ mesh::MeshOptions mesh_options_from_scene(const io::Scene& scene) {
   options.dim = scene.dimension();
   options.size = scene.number("structure.mesh.size");
   options.sliver_threshold = scene.number("structure.mesh.min_quality");
+  options.length_scale = structure_length_scale(scene);
   for (const auto& group : scene.array("structure.group")) {
     mesh::BoxGroup box{group.string("name"), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
     box.min.head(options.dim) = group.vector("min");
@@ -159,7 +137,7 @@ void validate_mesh_scene(const io::Scene& scene) {
   (void)mesh_options_from_scene(scene);
   std::set<std::string> wall_names;
   for (const auto& wall : scene.array("wall")) {
-    validate_wall(wall, scene.dimension());
+    validate_scene_wall(wall, scene.dimension());
     if (!wall_names.insert(wall.string("name")).second)
       input_error("{}: a wall named '{}' is already declared", wall.where("name"),
                   wall.string("name"));

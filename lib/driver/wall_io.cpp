@@ -6,7 +6,9 @@
 #include <fmt/ranges.h>
 
 #include "core/errors.hpp"
+#include "driver/length_unit.hpp"
 #include "io/schema.hpp"
+#include "mesh/wall_mesher.hpp"
 
 namespace hm::driver {
 
@@ -45,6 +47,60 @@ mesh::SurfaceMesh read_wall(const io::ArtefactReader& reader, const std::string&
     input_error("'{}': {} refers to vertices outside [0, {})", reader.path().string(), cells,
                 wall.vertices.rows());
   return wall;
+}
+
+namespace {
+
+Eigen::VectorXd primitive_vector(const io::SceneView& wall, const std::string& key) {
+  const Eigen::VectorXd v = wall.vector(key);
+  if (v.size() == 0)
+    input_error("{}: {} is required for kind = \"{}\"", wall.file().string(), wall.full(key),
+                wall.string("kind"));
+  return v;
+}
+
+}  // namespace
+
+void validate_scene_wall(const io::SceneView& wall, int dim) {
+  const std::string kind = wall.string("kind");
+  if ((kind == "rectangle" && dim != 2) || (kind == "box" && dim != 3))
+    input_error("{}: kind = \"{}\" needs case.dimension = {}", wall.where("kind"), kind,
+                kind == "rectangle" ? 2 : 3);
+  if (kind == "file") {
+    const std::filesystem::path file = wall.file_path("file");
+    if (!std::filesystem::exists(file))
+      input_error("{}: wall surface file '{}' does not exist", wall.where("file"), file.string());
+    (void)file_length_scale(wall, "length_unit", file);
+    return;
+  }
+  if (wall.string("length_unit") != "m")
+    input_error(
+        "{}: length_unit applies to a surface file (kind = \"file\"); a {} tank is "
+        "given in metres",
+        wall.where("length_unit"), kind);
+  (void)primitive_vector(wall, "origin");
+  if ((primitive_vector(wall, "size").array() <= 0).any())
+    input_error("{}: every edge length must be > 0 m", wall.where("size"));
+}
+
+mesh::SurfaceMesh mesh_scene_wall(const io::SceneView& wall, int dim) {
+  validate_scene_wall(wall, dim);
+  mesh::WallOptions options;
+  options.dim = dim;
+  options.size = wall.number("mesh_size");
+  options.faces = wall.strings("faces");
+  options.flip_normals = wall.boolean("flip_normals");
+  const std::string kind = wall.string("kind");
+  if (kind == "rectangle")
+    return mesh::mesh_rectangle_walls(
+        {primitive_vector(wall, "origin"), primitive_vector(wall, "size")}, options);
+  if (kind == "box")
+    return mesh::mesh_box_walls({primitive_vector(wall, "origin"), primitive_vector(wall, "size")},
+                                options);
+  const std::filesystem::path file = wall.file_path("file");
+  options.length_scale = file_length_scale(wall, "length_unit", file);
+  options.length_unit_key = wall.full("length_unit");
+  return mesh::mesh_wall_file(file, options);
 }
 
 }  // namespace hm::driver

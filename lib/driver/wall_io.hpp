@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "io/artefact.hpp"
+#include "io/scene.hpp"
 #include "mesh/types.hpp"
 
 namespace hm::driver {
@@ -17,5 +18,14 @@ std::vector<std::string> wall_names(const io::ArtefactReader& mesh_artefact);
 /// the wall is absent (listing the walls present) or its datasets are inconsistent (columns ≠
 /// dimension, cells referring to vertices that do not exist).
 mesh::SurfaceMesh read_wall(const io::ArtefactReader& mesh_artefact, const std::string& name);
+
+/// Checks one [[wall]] of a scene without meshing it (what mesh_scene_wall refuses before gmsh).
+void validate_scene_wall(const io::SceneView& wall, int dim);
+
+/// Meshes one [[wall]] of a scene (`dim` = case.dimension): a rectangle or box tank, or a surface
+/// file in its declared length_unit. InputError naming the key for a primitive without origin or
+/// size, a kind that does not match the dimension, a missing file or a length_unit on a
+/// primitive.
+mesh::SurfaceMesh mesh_scene_wall(const io::SceneView& wall, int dim);
 
 }  // namespace hm::driver

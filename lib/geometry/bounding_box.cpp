@@ -35,7 +35,7 @@ bool report_extent(const BoundingBox& box, std::string_view what) {
   if (suspicious)
     spdlog::warn(
         "{}: largest extent {:.6g} m is outside [1e-3, 1e3] m; coordinates are read as "
-        "metres — was the geometry drawn in millimetres?",
+        "metres unless the scene declares the file's length_unit — was it drawn in millimetres?",
         what, largest);
   return suspicious;
 }

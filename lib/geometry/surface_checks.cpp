@@ -242,6 +242,18 @@ mesh::SurfaceMesh refine_uniformly(const mesh::SurfaceMesh& surface, double max_
   return out;
 }
 
+double refined_cell_count(const mesh::SurfaceMesh& surface, double max_edge) {
+  HM_ASSERT(max_edge > 0.0, "refined_cell_count needs a positive size");
+  if (surface.cells.rows() == 0) return 0.0;
+  double longest = surface.dim == 2 ? longest_segment(surface) : longest_edge(surface);
+  double cells = static_cast<double>(surface.cells.rows());
+  while (longest > max_edge) {
+    longest *= 0.5;
+    cells *= surface.dim == 2 ? 2.0 : 4.0;
+  }
+  return cells;
+}
+
 void reverse_cells(mesh::SurfaceMesh& surface) {
   for (Index c = 0; c < surface.cells.rows(); ++c)
     std::swap(surface.cells(c, 0), surface.cells(c, 1));

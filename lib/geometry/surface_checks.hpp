@@ -40,6 +40,10 @@ mesh::Index count_border_edges(const mesh::SurfaceMesh& surface);
 /// are unchanged, and the original vertices keep their indices (new ones are appended).
 mesh::SurfaceMesh refine_uniformly(const mesh::SurfaceMesh& surface, double max_edge);
 
+/// The cell count refine_uniformly(surface, max_edge) would give, without refining: each
+/// halving of the longest edge multiplies the triangles by 4 (segments by 2).
+double refined_cell_count(const mesh::SurfaceMesh& surface, double max_edge);
+
 /// Reverses every cell (the normal of each triangle or segment flips).
 void reverse_cells(mesh::SurfaceMesh& surface);
 

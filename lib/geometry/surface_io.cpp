@@ -9,6 +9,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <spdlog/spdlog.h>
 #include <assimp/Importer.hpp>
 
@@ -68,6 +69,31 @@ mesh::SurfaceMesh to_surface(const Soup& soup) {
   return s;
 }
 
+/// Refuses a triangle without area (two corners at one point, or three on a line): it has no
+/// normal, so no fluid side, and would put wall nodes with an undefined normal on the wall.
+/// Tolerance: area below 1e-12 of the square of the surface's bounding-box diagonal.
+void check_no_degenerate_triangles(const mesh::SurfaceMesh& surface,
+                                   const std::filesystem::path& path) {
+  if (surface.cells.cols() != 3 || surface.vertices.cols() != 3) return;
+  const Eigen::Vector3d lower = surface.vertices.colwise().minCoeff().transpose();
+  const Eigen::Vector3d upper = surface.vertices.colwise().maxCoeff().transpose();
+  const double least_area = 1e-12 * (upper - lower).squaredNorm();
+  for (Index c = 0; c < surface.cells.rows(); ++c) {
+    const auto corner = [&](int k) -> Eigen::Vector3d {
+      return surface.vertices.row(surface.cells(c, k)).transpose();
+    };
+    const double area = 0.5 * (corner(1) - corner(0)).cross(corner(2) - corner(0)).norm();
+    if (!(area > least_area))
+      input_error(
+          "geometry file '{}': triangle {} (in file order) is degenerate, corners ({}), ({}), "
+          "({}), area {:.3g} m²: it has no normal, so no fluid side. Expected triangles with an "
+          "area; remove zero-area faces and merge duplicate vertices (e.g. MeshLab's \"Remove "
+          "Zero Area Faces\")",
+          path.string(), c + 1, fmt::join(corner(0), ", "), fmt::join(corner(1), ", "),
+          fmt::join(corner(2), ", "), area);
+  }
+}
+
 }  // namespace
 
 mesh::SurfaceMesh read_surface_file(const std::filesystem::path& path) {
@@ -81,6 +107,7 @@ mesh::SurfaceMesh read_surface_file(const std::filesystem::path& path) {
       input_error("geometry file '{}' holds no triangle; expected a triangulated surface",
                   path.string());
     merge_identical_vertices(known->surface);
+    check_no_degenerate_triangles(known->surface, path);
     return std::move(known->surface);
   }
   Assimp::Importer importer;
@@ -97,6 +124,7 @@ mesh::SurfaceMesh read_surface_file(const std::filesystem::path& path) {
         path.string(), scene->mNumMeshes);
   mesh::SurfaceMesh surface = to_surface(soup);
   merge_identical_vertices(surface);
+  check_no_degenerate_triangles(surface, path);
   return surface;
 }
 

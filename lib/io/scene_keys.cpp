@@ -142,6 +142,11 @@ const std::vector<KeyDecl>& scene_keys() {
            "geometry file for kind = \"file\", relative to the scene: .geo (gmsh script), "
            ".step/.stp/.brep/.iges/.igs (CAD), .stl/.obj/.ply (closed surface mesh)",
            mesh_stage),
+      text("structure.geometry.length_unit", "\"m\"", {"m", "cm", "mm", "in", "ft"},
+           "unit of the lengths in structure.geometry.file (CAD and surface files; a .geo script "
+           "is in metres). A file written in millimetres needs \"mm\": read as metres it is a "
+           "structure 1000 times too large, which fsi-mesh refuses by its element estimate",
+           mesh_stage),
       vector("structure.geometry.origin", "[]", "m", 0,
              "lowest corner of the rectangle/box primitive (required for those kinds)", mesh_stage),
       vector("structure.geometry.size", "[]", "m", 0,
@@ -149,8 +154,12 @@ const std::vector<KeyDecl>& scene_keys() {
              0.0),
 
       // [structure.mesh]
-      number("structure.mesh.size", "", "m", 0, inf, "target element edge length", mesh_stage,
-             true),
+      number("structure.mesh.size", "", "m", 0, inf,
+             "target element edge length (gmsh Mesh.MeshSizeMax). For a .geo script it is an "
+             "upper bound: the script's own point sizes (characteristic lengths), where smaller, "
+             "win. fsi-mesh refuses, before meshing, a size whose element estimate "
+             "would not fit this machine's memory in fsi-modes",
+             mesh_stage, true),
       number("structure.mesh.min_quality", "0.1", "1", 0, 1,
              "elements below this shape quality are reported as slivers", mesh_stage),
 
@@ -177,6 +186,9 @@ const std::vector<KeyDecl>& scene_keys() {
                   "faces of the primitive to keep (empty: all; an open-top tank omits ymax/zmax)",
                   mesh_stage),
       text("wall[].file", "\"\"", {}, "surface file for kind = \"file\", relative to the scene",
+           mesh_stage),
+      text("wall[].length_unit", "\"m\"", {"m", "cm", "mm", "in", "ft"},
+           "unit of the lengths in wall[].file (STL, OBJ, PLY; a .geo script is in metres)",
            mesh_stage),
       number("wall[].mesh_size", "", "m", 0, inf, "target edge length of the wall mesh", mesh_stage,
              true),
@@ -555,8 +567,12 @@ const std::vector<KeyDecl>& scene_keys() {
            map_stage),
       text("map.file", "\"\"", {},
            "target surface for map.target = \"file\", relative to the scene: a surface mesh "
-           "(.stl, .obj, .ply; metres) or a gmsh script (.geo, meshed at map.mesh_size; curves "
+           "(.stl, .obj, .ply; in map.length_unit) or a gmsh script (.geo, meshed at "
+           "map.mesh_size; curves "
            "in 2-D, surfaces in 3-D, oriented with the fluid on their normal side)",
+           map_stage),
+      text("map.length_unit", "\"m\"", {"m", "cm", "mm", "in", "ft"},
+           "unit of the lengths in a surface-mesh map.file (a .geo script is in metres)",
            map_stage),
       number("map.mesh_size", "0.0", "m", 0, inf,
              "element size of a .geo target (map.file), e.g. half the fluid's dx", map_stage),

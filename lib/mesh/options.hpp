@@ -47,6 +47,9 @@ struct MeshOptions {
   int threads = 1;                           ///< gmsh General.NumThreads
   bool verbose = false;                      ///< gmsh messages on the terminal
   double sliver_threshold = 0.1;  ///< cells with radius-ratio quality below this are slivers
+  /// Metres per length unit of a geometry file (CAD, STL/OBJ/PLY): 0.001 for a file in
+  /// millimetres. A .geo script is in metres (1 only).
+  double length_scale = 1.0;
 };
 
 /// Fluid walls: a linear surface (triangles in 3-D, segments in 2-D) as the fluid sees it.
@@ -63,6 +66,9 @@ struct WallOptions {
       false;  ///< reverse every cell (for a .geo or an open STL given the other way)
   int threads = 1;
   bool verbose = false;
+  /// Metres per length unit of a triangle file (STL, OBJ, PLY); a .geo script is in metres.
+  double length_scale = 1.0;
+  std::string length_unit_key = "length_unit";  ///< the scene key of the unit, for messages
 };
 
 }  // namespace hm::mesh

@@ -18,6 +18,7 @@
 #include "mesh/gmsh_session.hpp"
 #include "mesh/groups.hpp"
 #include "mesh/quality.hpp"
+#include "mesh/size_estimate.hpp"
 
 namespace hm::mesh {
 namespace {
@@ -31,6 +32,10 @@ struct Source {
   std::vector<BoxGroup> primitive_groups;
   bool size_required = true;
   bool straight_second_order = false;  ///< mid-edge nodes on straight edges (discrete surfaces)
+  /// The solid's area (2-D) / volume (3-D) [m^dim] once the model is built, for the element
+  /// estimate; empty: no estimate.
+  std::function<double()> measure;
+  bool from_file = false;  ///< a geometry file (whose length unit may be wrong)
 };
 
 void validate(const MeshOptions& o, const Source& s) {
@@ -46,10 +51,40 @@ void validate(const MeshOptions& o, const Source& s) {
       input_error("{}: mesh size {} m of group '{}' is not positive", s.name, size, group);
 }
 
-double model_diagonal() {
+Eigen::Vector3d model_extent() {
   double x0, y0, z0, x1, y1, z1;
   gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
-  return std::hypot(x1 - x0, y1 - y0, z1 - z0);
+  return {x1 - x0, y1 - y0, z1 - z0};
+}
+
+double model_diagonal() {
+  return model_extent().norm();
+}
+
+/// The bounding box's area (2-D) / volume (3-D): an upper bound of the solid's measure, for
+/// models whose kernel cannot tell it (a .geo script of the built-in kernel).
+double bounding_measure(int dim) {
+  const Eigen::Vector3d extent = model_extent();
+  return dim == 2 ? extent.x() * extent.y() : extent.prod();
+}
+
+/// OpenCASCADE's area (2-D) / volume (3-D) of the model's top-dimension entities.
+double occ_measure(int dim) {
+  gmsh::vectorpair entities;
+  gmsh::model::getEntities(entities, dim);
+  double sum = 0.0;
+  for (const auto& [d, tag] : entities) {
+    double mass = 0.0;
+    gmsh::model::occ::getMass(d, tag, mass);
+    sum += std::abs(mass);
+  }
+  return sum;
+}
+
+/// Refuses, before gmsh meshes, a mesh whose element estimate would not fit fsi-modes here.
+void check_estimate(const MeshOptions& o, const Source& s) {
+  if (!(o.size > 0.0) || !s.measure) return;
+  check_structure_estimate(o.dim, s.measure(), o.size, model_extent(), s.from_file, s.name);
 }
 
 /// Geometry entities (of dimension < dim) a group name refers to, before meshing.
@@ -216,6 +251,7 @@ StructureMesh run(const Source& source, const MeshOptions& options) {
     gmsh_call(source.name, [&] {
       source.build_model();
       check_model_dimension(options.dim, source.name);
+      check_estimate(options, source);
       apply_sizes(options, boxes, source);
       generate(options, source);
       mesh = read_structure(options.dim, source.name);
@@ -285,6 +321,7 @@ StructureMesh mesh_rectangle(const RectangleShape& r, const MeshOptions& options
              gmsh::model::occ::synchronize();
            },
            primitive_face_groups(r)};
+  s.measure = [&] { return r.size.prod(); };
   return run(s, options);
 }
 
@@ -297,12 +334,20 @@ StructureMesh mesh_box(const BoxShape& b, const MeshOptions& options) {
              gmsh::model::occ::synchronize();
            },
            primitive_face_groups(b)};
+  s.measure = [&] { return b.size.prod(); };
   return run(s, options);
 }
 
 StructureMesh mesh_geo_file(const std::filesystem::path& path, const MeshOptions& options) {
   require_file(path, "gmsh script");
+  if (options.length_scale != 1.0)
+    input_error(
+        "gmsh script '{}': its lengths are metres; a length scale of {} cannot apply "
+        "(scale the geometry in the script with Dilate)",
+        path.string(), options.length_scale);
   Source s{path.string(), [&] { gmsh::open(path.string()); }, {}, false};
+  s.measure = [&] { return bounding_measure(options.dim); };
+  s.from_file = true;
   return run(s, options);
 }
 
@@ -311,11 +356,14 @@ StructureMesh mesh_cad_file(const std::filesystem::path& path, const MeshOptions
   Source s{path.string(),
            [&] {
              gmsh::vectorpair shapes;
+             gmsh::option::setNumber("Geometry.OCCScaling", options.length_scale);
              gmsh::model::occ::importShapes(path.string(), shapes);
              gmsh::model::occ::synchronize();
              if (shapes.empty()) input_error("CAD file '{}' holds no shape", path.string());
            },
            {}};
+  s.measure = [&] { return occ_measure(options.dim); };
+  s.from_file = true;
   return run(s, options);
 }
 
@@ -324,13 +372,17 @@ StructureMesh mesh_closed_surface(SurfaceMesh surface, const MeshOptions& option
   if (options.dim != 3)
     input_error("{}: a closed triangle surface bounds a 3-D solid; mesh dimension {} was asked",
                 source, options.dim);
-  geometry::check_closed_surface(surface, source);
+  const geometry::SurfaceCheckReport report = geometry::check_closed_surface(surface, source);
   Source s{std::string(source), [&] { build_volume_from_surface(surface); }, {}, true, true};
+  s.measure = [&] { return report.enclosed_volume; };
+  s.from_file = true;
   return run(s, options);
 }
 
 StructureMesh mesh_surface_file(const std::filesystem::path& path, const MeshOptions& options) {
-  return mesh_closed_surface(geometry::read_surface_file(path), options, path.string());
+  SurfaceMesh surface = geometry::read_surface_file(path);
+  surface.vertices *= options.length_scale;
+  return mesh_closed_surface(std::move(surface), options, path.string());
 }
 
 StructureMesh mesh_geometry_file(const std::filesystem::path& path, const MeshOptions& options) {

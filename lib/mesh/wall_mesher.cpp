@@ -16,6 +16,7 @@
 #include "mesh/gmsh_model.hpp"
 #include "mesh/gmsh_session.hpp"
 #include "mesh/groups.hpp"
+#include "mesh/size_estimate.hpp"
 
 namespace hm::mesh {
 namespace {
@@ -163,6 +164,10 @@ SurfaceMesh triangle_file_walls(const std::filesystem::path& path, const WallOpt
     input_error("wall file '{}': triangle files give 3-D walls; dimension {} was asked",
                 path.string(), o.dim);
   SurfaceMesh walls = geometry::read_surface_file(path);
+  walls.vertices *= o.length_scale;
+  check_wall_estimate(o.dim, geometry::refined_cell_count(walls, o.size), o.size,
+                      geometry::bounding_box(walls.vertices).extent(), o.length_unit_key,
+                      path.string());
   if (geometry::count_border_edges(walls) == 0) {
     geometry::check_closed_surface(walls, path.string());  // now outward
     geometry::reverse_cells(walls);                        // the fluid is inside
@@ -210,6 +215,11 @@ SurfaceMesh mesh_wall_file(const std::filesystem::path& path, const WallOptions&
     input_error("wall geometry file '{}' does not exist (or is not a regular file)", path.string());
   const std::string ext = lower_extension(path);
   SurfaceMesh walls;
+  if (ext == ".geo" && options.length_scale != 1.0)
+    input_error(
+        "gmsh script '{}': its lengths are metres; a length scale of {} cannot apply "
+        "(scale the geometry in the script with Dilate)",
+        path.string(), options.length_scale);
   if (ext == ".geo")
     walls = script_walls(path, options);
   else if (ext == ".stl" || ext == ".obj" || ext == ".ply")

@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # run_fuzzers.sh BUILD_DIR SECONDS [HARNESS...] — runs each libFuzzer harness (default: scene csv
-# surface) of BUILD_DIR (the `fuzz` preset: cmake --preset fuzz && cmake --build --preset fuzz)
-# for SECONDS of fuzzing, after replaying its regression inputs (tests/fuzz/regressions/<harness>/,
-# the inputs of defects found and fixed). Seed corpora come from the repository's own files:
-# scenes (pipelines, stage tests), time tables and reference curves, surface files (and a small
-# OBJ, PLY and binary STL written here). The corpus grows in BUILD_DIR/fuzz-work/<harness>/corpus
-# across runs; a crash, leak, hang (> 20 s an input) or sanitizer report is written to
-# .../crashes/ and fails the script. Prints executions and time per harness.
+# surface; artefact on request) of BUILD_DIR (the `fuzz` preset: cmake --preset fuzz && cmake --build --preset
+# fuzz) for SECONDS of fuzzing, after replaying its regression inputs
+# (tests/fuzz/regressions/<harness>/, the inputs of defects found and fixed). Seed corpora come
+# from the repository's own files: scenes (pipelines, stage tests), time tables and reference
+# curves, surface files (and a small OBJ, PLY, open and binary STL written here), and small valid
+# artefacts of each schema (tests/fuzz/seeds/artefact/, each behind every schema's selector byte).
+# The corpus grows in BUILD_DIR/fuzz-work/<harness>/corpus across runs; a crash, leak, hang
+# (> 20 s an input) or sanitizer report is written to .../crashes/ and fails the script. Prints
+# executions and time per harness.
 set -euo pipefail
 build="$(cd "$1" && pwd)"; seconds="$2"; shift 2
 harnesses=("$@"); [ ${#harnesses[@]} -gt 0 ] || harnesses=(scene csv surface)
@@ -39,6 +41,8 @@ make_seeds() {
       seed 01 "$dir/tet.obj" "$dir/obj"; rm "$dir/tet.obj"
       printf 'ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\nelement face 4\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 0 3 2\n' > "$dir/tet.ply"
       seed 02 "$dir/tet.ply" "$dir/ply"; rm "$dir/tet.ply"
+      printf 'solid s\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid s\n' > "$dir/open.stl"
+      seed 00 "$dir/open.stl" "$dir/open"; rm "$dir/open.stl"
       python3 - "$dir/binary" <<'PY'
 import struct, sys
 v = [(0, 0, 0), (1, 0, 0), (0, 1, 0), (0, 0, 1)]
@@ -47,6 +51,12 @@ body = b"".join(struct.pack("<12fH", 0, 0, 0, *v[a], *v[b], *v[c], 0) for a, b, 
 open(sys.argv[1], "wb").write(b"\x00" + b"binary tetrahedron".ljust(80, b" ") + struct.pack("<I", len(faces)) + body)
 PY
       ;;
+    artefact)
+      # The selector picks the schema expected (io::all_schemas order): every artefact behind
+      # every selector, so the wrong-schema paths are seeded too.
+      for f in "$source_dir"/tests/fuzz/seeds/artefact/*.h5; do
+        for selector in 00 01 02 03 04 05; do seed "$selector" "$f" "$dir/$((k++))"; done
+      done ;;
   esac
 }
 

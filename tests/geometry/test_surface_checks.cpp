@@ -36,6 +36,23 @@ TEST(SurfaceChecks, InwardBoxIsReversed) {
   EXPECT_TRUE(cgal::is_outward_oriented(box));
 }
 
+TEST(SurfaceChecks, VerticesNoTriangleUsesAreIgnored) {
+  // OBJ and PLY files may list vertices no face refers to; CGAL's orientation walk asserted on
+  // them (found by fuzz_surface). An inward box behind an unused vertex, with one more at the end.
+  auto box = box_surface(origin, size);
+  reverse_cells(box);
+  mesh::SurfaceMesh padded = box;
+  padded.vertices.resize(box.vertices.rows() + 2, 3);
+  padded.vertices.row(0) = Eigen::RowVector3d(9.0, 9.0, 9.0);
+  padded.vertices.middleRows(1, box.vertices.rows()) = box.vertices;
+  padded.vertices.row(box.vertices.rows() + 1) = Eigen::RowVector3d(-9.0, 0.0, 0.0);
+  padded.cells = box.cells.array() + 1;
+  const auto report = check_closed_surface(padded, "padded");
+  EXPECT_EQ(report.flipped_outward, 12);
+  EXPECT_NEAR(report.enclosed_volume, volume, 1e-15);
+  EXPECT_TRUE(cgal::is_outward_oriented(padded));
+}
+
 TEST(SurfaceChecks, OneFlippedTriangleIsMadeConsistent) {
   auto box = box_surface(origin, size);
   std::swap(box.cells(5, 1), box.cells(5, 2));

@@ -154,6 +154,55 @@ TEST(StructureMesher, StlBoxBecomesATet10Volume) {
   EXPECT_GT(m.facets.rows(), 200);
 }
 
+TEST(StructureMesher, StlInMillimetresWithItsLengthScaleIsTheMetreMesh) {
+  // The same box written in millimetres, read with length_scale 0.001: the metre box.
+  const auto dir = hm::test::scratch_dir();
+  auto box = geometry::read_surface_file(data_dir / "box_0.5x0.25x0.125.stl");
+  box.vertices *= 1000.0;
+  geometry::write_stl_ascii(box, dir / "box_mm.stl");
+  MeshOptions o = options(3, 0.05);
+  o.length_scale = 0.001;
+  const auto m = mesh_surface_file(dir / "box_mm.stl", o);
+  expect_valid(m, 0.5 * 0.25 * 0.125, 2 * (0.5 * 0.25 + 0.25 * 0.125 + 0.125 * 0.5));
+  const auto extent = geometry::bounding_box(m.nodes);
+  EXPECT_NEAR((extent.min - Eigen::Vector3d(0.25, 0, 0)).norm(), 0.0, 1e-12);
+  EXPECT_NEAR((extent.max - Eigen::Vector3d(0.75, 0.25, 0.125)).norm(), 0.0, 1e-12);
+}
+
+TEST(StructureMesher, StlInMillimetresReadAsMetresIsRefusedBeforeMeshing) {
+  // Read as metres, the box is 500 × 250 × 125 m: about 5.0 · 15.6e6 / 0.05³ = 6e11 tet10, far
+  // beyond any machine's memory in fsi-modes. Refused with the estimate and the unit hint.
+  const auto dir = hm::test::scratch_dir();
+  auto box = geometry::read_surface_file(data_dir / "box_0.5x0.25x0.125.stl");
+  box.vertices *= 1000.0;
+  geometry::write_stl_ascii(box, dir / "box_mm.stl");
+  const auto message =
+      input_error_message([&] { mesh_surface_file(dir / "box_mm.stl", options(3, 0.05)); });
+  EXPECT_NE(message.find("box_mm.stl: mesh size 0.05 m (structure.mesh.size) gives about 6.25e+11 "
+                         "tet10 cells for a solid of 1.562e+07 m³ spanning 500 × 250 × 125 m"),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("structure.geometry.length_unit = \"mm\""), std::string::npos) << message;
+}
+
+TEST(StructureMesher, CadFileIsScaledByItsLengthScale) {
+  MeshOptions o = options(3, 0.01);
+  o.length_scale = 2.0;  // as if plate.step were in units of 2 m
+  const auto m = mesh_cad_file(data_dir / "plate.step", o);
+  const double a = 2 * 0.079, b = 2 * 0.005, c = 2 * 0.03;
+  expect_valid(m, a * b * c, 2 * (a * b + b * c + c * a));
+}
+
+TEST(StructureMesher, GeoScriptRefusesALengthScale) {
+  MeshOptions o = options(2, 0.01);
+  o.length_scale = 0.001;
+  const auto message = input_error_message([&] { mesh_geo_file(data_dir / "gate_2d.geo", o); });
+  EXPECT_NE(message.find("gate_2d.geo': its lengths are metres; a length scale of 0.001 cannot "
+                         "apply"),
+            std::string::npos)
+      << message;
+}
+
 TEST(StructureMesher, InwardStlIsReorientedBeforeMeshing) {
   const auto dir = hm::test::scratch_dir();
   auto box = hm::test::box_surface({0, 0, 0}, {0.5, 0.5, 0.25});

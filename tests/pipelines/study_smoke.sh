@@ -74,3 +74,38 @@ set -e
 grep -q "fluid.dx = -1 is out of range" <<<"$message" || { echo "$message"; fail "no message"; }
 [ ! -e "$work/bad.mk" ] || fail "a refused study left $work/bad.mk"
 echo "study_smoke: second make reran nothing; a bad setting was refused with exit 2"
+
+# kill -9 of fsi-study at several moments (issue 19, item 7): its folder then holds nothing or
+# the complete table (study.json parses, every plot is a whole PNG), never a part of one.
+study_file="$work/study.toml"
+sed -e "s|^scene = \"../../|scene = \"$source_dir/pipelines/|" "$study/study.smoke.toml" > "$study_file"
+for delay in 0.05 0.2 0.5 1; do
+  out="$work/killed/study"
+  rm -rf "$work/killed"
+  "$build_dir/stages/fsi-study/fsi-study" "$study_file" --runs "$work" -o "$out/study.json" -q \
+    > /dev/null 2>&1 &
+  pid=$!
+  sleep "$delay"
+  kill -9 "$pid" 2> /dev/null || true
+  wait "$pid" 2> /dev/null || true
+  # The folder appears whole (staged beside it, then renamed): absent, or the table, its JSON
+  # and plots all there.
+  if [ -e "$out" ]; then
+    [ -f "$out/study.md" ] && [ -f "$out/study.json" ] ||
+      fail "fsi-study killed after $delay s left $out without its table"
+    python3 -c "import json, sys; json.load(open(sys.argv[1]))" "$out/study.json" ||
+      fail "fsi-study killed after $delay s left a partial study.json"
+    for png in resolution.cost resolution.curves modes.cost modes.curves; do
+      [ -f "$out/$png.png" ] || fail "fsi-study killed after $delay s left $out without $png.png"
+    done
+  fi
+  for png in "$out"/*.png; do
+    [ -e "$png" ] || continue
+    python3 - "$png" <<'PY' || fail "fsi-study killed after $delay s left a partial $png"
+import sys
+data = open(sys.argv[1], "rb").read()
+assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[-12:-4] == b"\x00\x00\x00\x00IEND", sys.argv[1]
+PY
+  done
+  echo "study_smoke: fsi-study killed after $delay s: $( [ -e "$out" ] && echo "the whole folder" || echo "no folder"), nothing partial"
+done
