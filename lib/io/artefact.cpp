@@ -14,6 +14,7 @@
 #include "core/errors.hpp"
 #include "core/version.hpp"
 #include "io/hash.hpp"
+#include "io/seal.hpp"
 
 namespace hm::io {
 
@@ -223,8 +224,10 @@ ArtefactWriter::ArtefactWriter(const std::filesystem::path& output, const Schema
                                std::vector<InputRecord> inputs)
     : schema_(schema), output_(output) {
   silence_hdf5_errors();
+  const Handle create_props(H5Pcreate(H5P_FILE_CREATE), H5Pclose);
+  H5Pset_userblock(create_props.get(), seal_block_size);  // the seal's place (seal.hpp)
   file_ = std::make_unique<Hdf5File>(
-      H5Fcreate(output_.temp_path().c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT));
+      H5Fcreate(output_.temp_path().c_str(), H5F_ACC_TRUNC, create_props.get(), H5P_DEFAULT));
   if (!file_->valid())
     input_error("cannot create '{}' (for '{}')", output_.temp_path().string(), output.string());
   const hid_t root = file_->get();
@@ -336,7 +339,8 @@ void ArtefactWriter::commit() {
     HM_ASSERT(found, "required dataset '{}' of {} was not written", spec.path, schema_.name);
   }
   H5Fflush(file_->get(), H5F_SCOPE_GLOBAL);
-  file_.reset();  // close before the rename
+  file_.reset();  // close before sealing and the rename
+  write_seal(output_.temp_path());
   output_.commit();
 }
 
@@ -349,11 +353,7 @@ std::unique_ptr<Hdf5File> open_artefact_file(const std::filesystem::path& path) 
   if (!std::filesystem::exists(path)) input_error("'{}': no such file", path.string());
   if (!std::filesystem::is_regular_file(path))
     input_error("'{}' is not a regular file", path.string());
-  if (H5Fis_hdf5(path.c_str()) <= 0)
-    input_error(
-        "'{}' is not an HDF5 file (or its header is corrupt); expected a hydromodal "
-        "artefact written by an fsi-* stage",
-        path.string());
+  check_seal(path);  // before HDF5 parses a byte of it
   auto file = std::make_unique<Hdf5File>(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT));
   if (!file->valid())
     input_error("'{}' cannot be opened as HDF5: the file is truncated or corrupt", path.string());

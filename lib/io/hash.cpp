@@ -40,8 +40,13 @@ struct DigestContext {
 }  // namespace
 
 std::string sha256_file(const std::filesystem::path& path) {
+  return sha256_file_from(path, 0);
+}
+
+std::string sha256_file_from(const std::filesystem::path& path, std::uint64_t offset) {
   std::ifstream in(path, std::ios::binary);
   if (!in) input_error("cannot read '{}' to hash it: no such file or no permission", path.string());
+  in.seekg(static_cast<std::streamoff>(offset));
   DigestContext digest;
   std::array<char, 1 << 16> buffer{};
   while (in) {

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # run_fuzzers.sh BUILD_DIR SECONDS [HARNESS...] — runs each libFuzzer harness (default: scene csv
-# surface; artefact on request) of BUILD_DIR (the `fuzz` preset: cmake --preset fuzz && cmake --build --preset
+# surface artefact) of BUILD_DIR (the `fuzz` preset: cmake --preset fuzz && cmake --build --preset
 # fuzz) for SECONDS of fuzzing, after replaying its regression inputs
 # (tests/fuzz/regressions/<harness>/, the inputs of defects found and fixed). Seed corpora come
 # from the repository's own files: scenes (pipelines, stage tests), time tables and reference
@@ -11,7 +11,7 @@
 # executions and time per harness.
 set -euo pipefail
 build="$(cd "$1" && pwd)"; seconds="$2"; shift 2
-harnesses=("$@"); [ ${#harnesses[@]} -gt 0 ] || harnesses=(scene csv surface)
+harnesses=("$@"); [ ${#harnesses[@]} -gt 0 ] || harnesses=(scene csv surface artefact)
 source_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
 export OMP_NUM_THREADS=1

@@ -12,6 +12,8 @@
 #include "io/artefact.hpp"
 #include "io/hash.hpp"
 
+#include <hdf5.h>
+
 namespace fs = std::filesystem;
 using namespace hm::io;
 
@@ -193,11 +195,56 @@ TEST(Artefact, NotHdf5TruncatedAndMissingFilesAreInputErrors) {
     const std::string garbage(4096, '\x5a');
     f.write(garbage.data(), garbage.size());
   }
-  try {
-    ArtefactReader r(dir / "flipped.h5", test_schema());
-    (void)r.read_matrix("/values/x");
-  } catch (const hm::InputError&) {
+  const std::string flipped =
+      message_of([&] { ArtefactReader(dir / "flipped.h5", test_schema()); });
+  EXPECT_NE(flipped.find("flipped.h5' is corrupt: its content does not match the SHA-256 sealed "
+                         "into it"),
+            std::string::npos)
+      << flipped;
+}
+
+TEST(Artefact, SealIsCheckedBeforeHdf5ParsesTheFile) {
+  const fs::path dir = fresh_dir("seal");
+  {
+    ArtefactWriter w(dir / "a.h5", test_schema(), "test", "", {});
+    w.write("/values/x", MatrixRM(MatrixRM::Ones(4, 2)));
+    w.write("/values/ids", std::vector<std::int64_t>(4, 1));
+    w.commit();
   }
+  // The seal is a user block: HDF5 (and h5ls, h5py) read the file as it is.
+  EXPECT_GT(H5Fis_hdf5((dir / "a.h5").c_str()), 0);
+  std::ifstream in(dir / "a.h5", std::ios::binary);
+  std::string head(26, '\0');
+  in.read(head.data(), 26);
+  EXPECT_EQ(head, "hydromodal artefact seal 1");
+  EXPECT_NO_THROW(ArtefactReader(dir / "a.h5", test_schema()));
+
+  // One byte changed after the block: refused by the seal, whichever byte it is.
+  const auto size = fs::file_size(dir / "a.h5");
+  for (const std::uintmax_t at : {std::uintmax_t{512}, size / 2, size - 1}) {
+    fs::copy_file(dir / "a.h5", dir / "b.h5", fs::copy_options::overwrite_existing);
+    {
+      std::fstream f(dir / "b.h5", std::ios::in | std::ios::out | std::ios::binary);
+      f.seekg(static_cast<std::streamoff>(at));
+      const char byte = static_cast<char>(f.get() ^ 1);
+      f.seekp(static_cast<std::streamoff>(at));
+      f.put(byte);
+    }
+    EXPECT_NE(message_of([&] { ArtefactReader(dir / "b.h5", test_schema()); }).find("is corrupt"),
+              std::string::npos)
+        << "byte " << at;
+  }
+
+  // An HDF5 file that no stage sealed (written by another program).
+  {
+    const hid_t file =
+        H5Fcreate((dir / "other.h5").c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT);
+    ASSERT_GE(file, 0);
+    H5Fclose(file);
+  }
+  const std::string unsealed = message_of([&] { ArtefactReader(dir / "other.h5", test_schema()); });
+  EXPECT_NE(unsealed.find("other.h5' is an HDF5 file without hydromodal's seal"), std::string::npos)
+      << unsealed;
 }
 
 TEST(Artefact, WriterThatFailsOrIsKilledLeavesNothingAtTheOutputPath) {
