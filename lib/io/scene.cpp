@@ -320,14 +320,24 @@ class Validator {
       if (parent_of(path) != normalised) continue;
       const std::string key = leaf_of(path);
       if (is_array) {
-        if (auto* array = table[key].as_array())
+        if (auto* array = table[key].as_array()) {
           for (std::size_t i = 0; i < array->size(); ++i)
             if (auto* element = array->get(i)->as_table())
               fill_and_require(*element, s.path, fmt::format("{}[{}]", joined(actual, key), i));
+        } else if (table.contains(key)) {
+          errors_.push_back(fmt::format(
+              "{}: {} is an array of tables: expected [[{}]] sections, got a single value or table",
+              at(*table.get(key)), joined(actual, key), joined(actual, key)));
+        }
         continue;
       }
       if (auto* sub = table[key].as_table()) {
         fill_and_require(*sub, path, joined(actual, key));
+      } else if (table.contains(key)) {
+        // A value where the section belongs (`solver = 1`, `--set solver=`).
+        errors_.push_back(fmt::format("{}: {} is a section: expected a table [{}], got a value",
+                                      at(*table.get(key)), joined(actual, key),
+                                      joined(actual, key)));
       } else if (s.required) {
         errors_.push_back(fmt::format("{}: missing required section [{}] ({})",
                                       file_.filename().string(), joined(actual, key), s.doc));

@@ -117,6 +117,25 @@ TEST(Scene, MissingSectionAndSyntaxErrors) {
   EXPECT_NE(syntax.find("TOML syntax error"), std::string::npos) << syntax;
 }
 
+TEST(Scene, AValueWhereASectionBelongsIsAnError) {
+  // Found by fuzz_scene: `--set solver=  #` replaced the [solver] table by a string, and filling the
+  // section's defaults then dereferenced a null table (UBSan).
+  std::string message;
+  try {
+    Scene::parse(gate_scene, "scene.toml", {"solver=1"});
+  } catch (const hm::InputError& e) {
+    message = e.what();
+  }
+  EXPECT_NE(
+      message.find("scene.toml (--set): solver is a section: expected a table [solver], got a "
+                   "value"),
+      std::string::npos)
+      << message;
+  const std::string wall = error_of("wall = 3\n" + std::string(gate_scene));
+  EXPECT_NE(wall.find("wall is an array of tables: expected [[wall]] sections"), std::string::npos)
+      << wall;
+}
+
 TEST(Scene, CanonicalParametersArePerStageAndIgnoreFormatting) {
   const Scene a = Scene::parse(gate_scene, "scene.toml");
   const Scene b =
