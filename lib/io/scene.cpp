@@ -15,6 +15,14 @@
 namespace hm::io {
 namespace {
 
+/// A TOML number as a double. toml++'s value<double>() is empty for an integer a double cannot
+/// hold exactly (beyond 2^53, e.g. 66666666666666666, found by fuzz_scene); the nearest double
+/// is what a number key means.
+double number_of(const toml::node& node) {
+  if (const auto* integer = node.as_integer()) return static_cast<double>(integer->get());
+  return node.as_floating_point()->get();
+}
+
 std::string parent_of(const std::string& path) {
   const auto dot = path.rfind('.');
   return dot == std::string::npos ? "" : path.substr(0, dot);
@@ -247,7 +255,7 @@ class Validator {
     switch (d.type) {
       case KeyType::number:
         if (!node.is_number()) return bad_type();
-        return check_range(d, node.value<double>().value(), node, path);
+        return check_range(d, number_of(node), node, path);
       case KeyType::integer:
         if (!node.is_integer()) return bad_type();
         return check_range(d, static_cast<double>(node.as_integer()->get()), node, path);
@@ -270,8 +278,7 @@ class Validator {
         if (!array || !std::all_of(array->begin(), array->end(),
                                    [](const toml::node& e) { return e.is_number(); }))
           return bad_type();
-        for (const auto& element : *array)
-          check_range(d, element.value<double>().value(), node, path);
+        for (const auto& element : *array) check_range(d, number_of(element), node, path);
         return;
       }
     }
@@ -400,7 +407,7 @@ bool SceneView::has(const std::string& key) const {
   return static_cast<bool>(toml::node_view<const toml::node>(table_).at_path(key));
 }
 double SceneView::number(const std::string& key) const {
-  return node(key).value<double>().value();
+  return number_of(node(key));
 }
 long long SceneView::integer(const std::string& key) const {
   return node(key).value<long long>().value();
@@ -415,7 +422,7 @@ Eigen::VectorXd SceneView::vector(const std::string& key) const {
   const auto* array = node(key).as_array();
   HM_ASSERT(array, "{} is not an array", full(key));
   Eigen::VectorXd out(array->size());
-  for (std::size_t i = 0; i < array->size(); ++i) out[i] = array->get(i)->value<double>().value();
+  for (std::size_t i = 0; i < array->size(); ++i) out[i] = number_of(*array->get(i));
   return out;
 }
 std::vector<std::string> SceneView::strings(const std::string& key) const {

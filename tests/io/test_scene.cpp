@@ -118,8 +118,8 @@ TEST(Scene, MissingSectionAndSyntaxErrors) {
 }
 
 TEST(Scene, AValueWhereASectionBelongsIsAnError) {
-  // Found by fuzz_scene: `--set solver=  #` replaced the [solver] table by a string, and filling the
-  // section's defaults then dereferenced a null table (UBSan).
+  // Found by fuzz_scene: `--set solver=  #` replaced the [solver] table by a string, and filling
+  // the section's defaults then dereferenced a null table (UBSan).
   std::string message;
   try {
     Scene::parse(gate_scene, "scene.toml", {"solver=1"});
@@ -134,6 +134,18 @@ TEST(Scene, AValueWhereASectionBelongsIsAnError) {
   const std::string wall = error_of("wall = 3\n" + std::string(gate_scene));
   EXPECT_NE(wall.find("wall is an array of tables: expected [[wall]] sections"), std::string::npos)
       << wall;
+}
+
+TEST(Scene, AnIntegerBeyondADoublesPrecisionIsReadAsTheNearestDouble) {
+  // Found by fuzz_scene: toml++'s value<double>() is empty for 66666666666666666 (> 2^53), and the
+  // range check threw std::bad_optional_access out of the reader.
+  const Scene scene =
+      Scene::parse(gate_scene, "scene.toml", {"structure.mesh.size=66666666666666666"});
+  EXPECT_EQ(scene.number("structure.mesh.size"), 66666666666666666.0);
+  const std::string negative =
+      error_of(std::string(gate_scene) + "\n[time]\nend = -66666666666666666\n");
+  EXPECT_NE(negative.find("time.end = -66666666666666666 is out of range"), std::string::npos)
+      << negative;
 }
 
 TEST(Scene, CanonicalParametersArePerStageAndIgnoreFormatting) {
