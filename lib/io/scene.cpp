@@ -365,7 +365,10 @@ class Validator {
 
   void check_vector_sizes(toml::table& table, const std::string& normalised,
                           const std::string& actual) {
-    const long long dim = root_["case"]["dimension"].value<long long>().value_or(3);
+    // Only an integer counts: value<long long>() converts a float, out of range for 7e96 (UB,
+    // found by fuzz_scene); a non-integer dimension is reported by its own type check.
+    const auto* dimension = root_["case"]["dimension"].as_integer();
+    const long long dim = dimension ? dimension->get() : 3;
     for (auto&& [k, node] : table) {
       const std::string key(k.str());
       const std::string n = joined(normalised, key), a = joined(actual, key);

@@ -148,6 +148,14 @@ TEST(Scene, AnIntegerBeyondADoublesPrecisionIsReadAsTheNearestDouble) {
       << negative;
 }
 
+TEST(Scene, AFloatDimensionIsAWrongTypeNotAConversion) {
+  // Found by fuzz_scene: the vector-size check converted `dimension = 7e96` to an integer (UB).
+  const std::string message = error_of(replaced(gate_scene, "dimension = 2", "dimension = 7e96"));
+  EXPECT_NE(message.find("case.dimension = 7e+96 has the wrong type: expected an integer"),
+            std::string::npos)
+      << message;
+}
+
 TEST(Scene, CanonicalParametersArePerStageAndIgnoreFormatting) {
   const Scene a = Scene::parse(gate_scene, "scene.toml");
   const Scene b =
