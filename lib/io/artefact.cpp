@@ -113,23 +113,28 @@ std::optional<double> read_number_attribute(hid_t object, const std::string& nam
   return value;
 }
 
-std::vector<std::string> attribute_names(hid_t object) {
+/// The names of the attributes on `object` of `file`; an iteration HDF5 cannot finish (a corrupt
+/// attribute table) is an InputError, not a shorter list.
+std::vector<std::string> attribute_names(hid_t object, const std::filesystem::path& file) {
   std::vector<std::string> names;
-  H5Aiterate2(
+  const herr_t walked = H5Aiterate2(
       object, H5_INDEX_NAME, H5_ITER_INC, nullptr,
       [](hid_t, const char* name, const H5A_info_t*, void* data) -> herr_t {
         static_cast<std::vector<std::string>*>(data)->emplace_back(name);
         return 0;
       },
       &names);
+  if (walked < 0)
+    input_error("'{}': its attributes cannot be listed (corrupt file?)", file.string());
   return names;
 }
 
-/// Every dataset in the file, absolute paths, sorted.
-std::vector<std::string> dataset_paths(hid_t file) {
+/// Every dataset in `file`, absolute paths, sorted; a walk HDF5 cannot finish (a corrupt object
+/// header or group table) is an InputError, not a partial list.
+std::vector<std::string> dataset_paths(hid_t root, const std::filesystem::path& file) {
   std::vector<std::string> paths;
-  H5Ovisit(
-      file, H5_INDEX_NAME, H5_ITER_INC,
+  const herr_t walked = H5Ovisit(
+      root, H5_INDEX_NAME, H5_ITER_INC,
       [](hid_t, const char* name, const H5O_info_t* info, void* data) -> herr_t {
         // Appended, not "/" + name: GCC 12 at -O3 warns (-Wrestrict, a false positive) on an
         // operator+ that inserts into a temporary; dims_text formats for the same reason.
@@ -138,6 +143,8 @@ std::vector<std::string> dataset_paths(hid_t file) {
         return 0;
       },
       &paths);
+  if (walked < 0)
+    input_error("'{}': its groups and datasets cannot be walked (corrupt file?)", file.string());
   std::sort(paths.begin(), paths.end());
   return paths;
 }
@@ -376,7 +383,7 @@ Provenance read_provenance(hid_t root, const std::filesystem::path& path) {
   p.parameters_sha256 = read_string_attribute(root, attr::parameters_sha256).value_or("");
   p.status = read_string_attribute(root, attr::status).value_or("");
   const std::string prefix = attr::input_prefix;
-  for (const auto& name : attribute_names(root)) {
+  for (const auto& name : attribute_names(root, path)) {
     if (name.rfind(prefix, 0) != 0 || !name.ends_with(":path")) continue;
     const std::string role = name.substr(prefix.size(), name.size() - prefix.size() - 5);
     p.inputs.push_back({role, read_string_attribute(root, name).value_or(""),
@@ -389,7 +396,7 @@ Provenance read_provenance(hid_t root, const std::filesystem::path& path) {
 std::map<std::string, std::uint64_t> validate_datasets(hid_t root, const SchemaSpec& schema,
                                                        const std::filesystem::path& path) {
   std::map<std::string, std::uint64_t> extents;
-  const std::vector<std::string> present = dataset_paths(root);
+  const std::vector<std::string> present = dataset_paths(root, path);
   for (const auto& spec : schema.datasets) {
     const bool found = std::any_of(present.begin(), present.end(),
                                    [&](const std::string& p) { return schema.find(p) == &spec; });
@@ -575,7 +582,7 @@ ArtefactSummary summarise(const std::filesystem::path& path, std::size_t max_val
                   summary.provenance.schema_version, spec->readable_versions());
     validate_datasets(file->get(), *spec, path);
   }
-  for (const auto& name : attribute_names(file->get())) {
+  for (const auto& name : attribute_names(file->get(), path)) {
     RootAttribute a{name, read_string_attribute(file->get(), name).value_or(""),
                     read_number_attribute(file->get(), name)};
     if (a.number) {
@@ -587,7 +594,7 @@ ArtefactSummary summarise(const std::filesystem::path& path, std::size_t max_val
     }
     summary.attributes.push_back(std::move(a));
   }
-  for (const auto& dataset_path : dataset_paths(file->get())) {
+  for (const auto& dataset_path : dataset_paths(file->get(), path)) {
     Handle dataset(H5Dopen2(file->get(), dataset_path.c_str(), H5P_DEFAULT), H5Dclose);
     if (!dataset.valid())
       input_error("'{}': dataset '{}' cannot be opened (corrupt file?)", path.string(),

@@ -14,6 +14,8 @@ build="$(cd "$1" && pwd)"; seconds="$2"; shift 2
 harnesses=("$@"); [ ${#harnesses[@]} -gt 0 ] || harnesses=(scene csv surface artefact)
 source_dir="$(cd "$(dirname "${BASH_SOURCE[0]}")/../.." && pwd)"
 export ASAN_OPTIONS="detect_leaks=1:halt_on_error=1" UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1"
+# Leaks inside libraries on malformed input, each with its upstream report (lsan.supp).
+export LSAN_OPTIONS="suppressions=$source_dir/tests/fuzz/lsan.supp:print_suppressions=0"
 export OMP_NUM_THREADS=1
 
 # A seed: the file's bytes behind one selector byte (the harness's choice of reader).

@@ -11,6 +11,7 @@
 #include "core/errors.hpp"
 #include "io/artefact.hpp"
 #include "io/hash.hpp"
+#include "io/seal.hpp"
 
 #include <hdf5.h>
 
@@ -245,6 +246,42 @@ TEST(Artefact, SealIsCheckedBeforeHdf5ParsesTheFile) {
   const std::string unsealed = message_of([&] { ArtefactReader(dir / "other.h5", test_schema()); });
   EXPECT_NE(unsealed.find("other.h5' is an HDF5 file without hydromodal's seal"), std::string::npos)
       << unsealed;
+}
+
+// Found by fuzzing (tests/fuzz/regressions/artefact): a file whose seal matches (libFuzzer learns
+// the compared SHA-256) but whose dataset object header is corrupt. HDF5 opens the file and then
+// fails half-way through the walk of its objects; the walk's failure was ignored and the reader
+// went on with a partial list of datasets. Here the seal is rewritten over a corrupted header
+// version, as a program that edits and reseals an artefact would.
+TEST(Artefact, CorruptObjectHeaderUnderAValidSealIsAnInputError) {
+  const fs::path dir = fresh_dir("corrupt_header");
+  const fs::path file = dir / "a.h5";
+  write_valid(file, test_schema());
+  haddr_t header = HADDR_UNDEF;
+  {
+    const hid_t h5 = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+    ASSERT_GE(h5, 0);
+    H5O_info_t info;
+    ASSERT_GE(H5Oget_info_by_name2(h5, "/groups/clamped", &info, H5O_INFO_BASIC, H5P_DEFAULT), 0);
+    header = info.addr;
+    H5Fclose(h5);
+  }
+  {
+    // HDF5 addresses count from the end of the user block (the seal); a version-1 object header
+    // starts with its version byte.
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekg(static_cast<std::streamoff>(seal_block_size + header));
+    ASSERT_EQ(f.get(), 1) << "expected a version-1 object header at " << header;
+    f.seekp(static_cast<std::streamoff>(seal_block_size + header));
+    f.put(static_cast<char>(7));
+  }
+  write_seal(file);
+  const std::string read = message_of([&] { ArtefactReader(file, test_schema()); });
+  EXPECT_NE(read.find("a.h5': its groups and datasets cannot be walked (corrupt file?)"),
+            std::string::npos)
+      << read;
+  const std::string summary = message_of([&] { summarise(file, 8); });
+  EXPECT_NE(summary.find("cannot be walked"), std::string::npos) << summary;
 }
 
 TEST(Artefact, WriterThatFailsOrIsKilledLeavesNothingAtTheOutputPath) {
