@@ -2,8 +2,9 @@
 // with the schema a stage expects, then every declared dataset read; io::summarise, which walks
 // any artefact). The first byte chooses the expected schema, the rest is the HDF5 file. Seeds are
 // small valid artefacts of each schema (tests/fuzz/seeds/artefact/). A bad file must end in an
-// InputError naming the file; anything else is a defect. A mutated body fails the seal (io/seal):
-// what reaches HDF5 and the schema checks is a seed's body, under any schema byte and seal text.
+// InputError naming the file; anything else is a defect. A mutated body fails the seal
+// (io/seal): what reaches HDF5 and the schema checks is a seed's body, under any schema byte and
+// any padding of the seal's block.
 #include <string>
 #include <vector>
 

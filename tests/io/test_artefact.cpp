@@ -248,8 +248,9 @@ TEST(Artefact, SealIsCheckedBeforeHdf5ParsesTheFile) {
       << unsealed;
 }
 
-// Found by fuzzing (tests/fuzz/regressions/artefact): a file whose seal matches (libFuzzer learns
-// the compared SHA-256) but whose dataset object header is corrupt. HDF5 opens the file and then
+// Found by fuzzing (tests/fuzz/regressions/artefact): a file whose seal matches (libFuzzer learnt
+// the compared SHA-256, before seal.cpp compared digests opaquely) but whose dataset object header
+// is corrupt. HDF5 opens the file and then
 // fails half-way through the walk of its objects; the walk's failure was ignored and the reader
 // went on with a partial list of datasets. Here the seal is rewritten over a corrupted header
 // version, as a program that edits and reseals an artefact would.
