@@ -255,6 +255,7 @@ ldd::FlowOptions<D> flow_options(const io::Scene& scene) {
   o.ppe.tolerance = solver.number("ppe_tolerance");
   o.ppe.max_iterations = static_cast<int>(solver.integer("ppe_max_iterations"));
   o.ppe.preconditioner = ppe_preconditioner(solver);
+  o.ppe.amg_drop = solver.number("amg_drop");
   o.cfl = time.number("cfl");
   o.acceleration_number = time.number("acceleration_number");
   o.viscous_number = time.number("viscous_number");

@@ -347,6 +347,12 @@ const std::vector<KeyDecl>& scene_keys() {
            "from PETSc: boomeramg (hypre) or gamg (smoothed aggregation); the PETSc ones only in "
            "builds with PETSc (fsi-simulate --version lists them)",
            simulate_stage),
+      number("solver.amg_drop", "0.05", "1", 0, 0.5,
+             "algebraic multigrid (boomeramg, gamg): its hierarchy is built on the PPE matrix "
+             "without the entries smaller than amg_drop × their row's largest, lumped onto the "
+             "diagonal (0: on the whole matrix); the iteration still solves the whole matrix to "
+             "ppe_tolerance, so only the cost changes",
+             simulate_stage),
 
       // [[probe]]
       text("probe[].name", "", {},

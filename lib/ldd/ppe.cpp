@@ -174,7 +174,8 @@ linsolve::Settings settings_of(const SolverOptions& o) {
   return {.tolerance = o.tolerance,
           .max_iterations = o.max_iterations,
           .ilu_drop = o.ilu_drop,
-          .ilu_fill = o.ilu_fill};
+          .ilu_fill = o.ilu_fill,
+          .amg_drop = o.amg_drop};
 }
 
 }  // namespace
@@ -231,7 +232,21 @@ linsolve::SystemCounters PoissonSolver::counters() const {
   return sum;
 }
 
-SolveReport PoissonSolver::solve(const PoissonSystem& sys, std::vector<double>& pressure) {
+bool fix_at_zero(PoissonSystem& sys, std::span<const Index> points) {
+  if (sys.pinned >= 0) return false;
+  auto& a = sys.matrix;
+  for (const Index i : points) {
+    const Index r = sys.unknown_of[static_cast<std::size_t>(i)];
+    HM_ASSERT(r >= 0, "fix_at_zero: point {} is not an unknown", i);
+    for (int k = a.outerIndexPtr()[r]; k < a.outerIndexPtr()[r + 1]; ++k)
+      a.valuePtr()[k] = a.innerIndexPtr()[k] == r ? 1.0 : 0.0;
+    sys.rhs[r] = 0.0;
+  }
+  return true;
+}
+
+SolveReport PoissonSolver::solve(const PoissonSystem& sys, std::vector<double>& pressure,
+                                 bool keep_preconditioner) {
   const auto m = static_cast<Index>(sys.point_of.size());
   HM_ASSERT(pressure.size() == sys.unknown_of.size(), "pressure has {} values for {} points",
             pressure.size(), sys.unknown_of.size());
@@ -245,7 +260,7 @@ SolveReport PoissonSolver::solve(const PoissonSystem& sys, std::vector<double>& 
   if (m == 0) {
     rep.converged = true;
   } else {
-    const auto r = solver.solve(sys.matrix, sys.rhs, x);
+    const auto r = solver.solve(sys.matrix, sys.rhs, x, keep_preconditioner);
     rep.converged = r.converged;
     rep.preconditioner = preconditioner_of(r.method);
     rep.iterations = r.iterations;

@@ -48,6 +48,15 @@ template <int D>
 PoissonSystem assemble_poisson(PointSet<D>& points, const Neighbours& neighbours,
                                const Operators<D>& ops, const PoissonData& data, double dx);
 
+/// Makes `points` (unknowns of `system`) Dirichlet p = 0 without renumbering the unknowns: each
+/// one's row becomes x = 0, its column stays (multiplying that 0). The solution is the one
+/// assemble_poisson gives with those points Dirichlet p = 0 — no other row depends on a
+/// neighbour's type — but the system keeps its size and all but those rows, so the
+/// preconditioner built for it can serve the re-solve after wall tension is released. False
+/// (nothing changed) for a pinned closed system, which must be assembled again (releasing a
+/// point there ends the pinning).
+bool fix_at_zero(PoissonSystem& system, std::span<const Index> points);
+
 /// The PPE's linear solver (linsolve/linear_solver.hpp has the backends).
 /// automatic: Jacobi, and ILU (IncompleteLUT) from the same warm start only if Jacobi does not
 /// converge within max_iterations. Measured on hydrostatic tanks (Release, cold start, tol 1e-6;
@@ -72,6 +81,9 @@ struct SolverOptions {
   int max_iterations = 1000;
   double ilu_drop = 1e-4;  ///< IncompleteLUT drop tolerance
   int ilu_fill = 2;        ///< IncompleteLUT fill factor
+  /// boomeramg, gamg: the hierarchy is built on the PPE matrix without its entries below
+  /// amg_drop × their row's largest, lumped onto the diagonal (linsolve::amg_matrix).
+  double amg_drop = 0.05;
   /// automatic, in builds with PETSc: BoomerAMG (Jacobi as its fallback) for systems of at
   /// least this many unknowns; 0: never. The flow's default is measured per dimension:
   /// ppe_solver_defaults.
@@ -121,7 +133,10 @@ class PoissonSolver {
   explicit PoissonSolver(const SolverOptions& options = {});
   /// Solves the system; `pressure` (one value per point) is the warm start and receives the
   /// solution, with the Dirichlet values at Dirichlet points and 0 at inactive ones.
-  SolveReport solve(const PoissonSystem& system, std::vector<double>& pressure);
+  /// With `keep_preconditioner`, a system changed in a few rows since the last solve (by
+  /// fix_at_zero) reuses its preconditioner (linsolve::SystemSolver::solve).
+  SolveReport solve(const PoissonSystem& system, std::vector<double>& pressure,
+                    bool keep_preconditioner = false);
   const SolverOptions& options() const { return options_; }
   /// Over every solve so far.
   linsolve::SystemCounters counters() const;

@@ -1,7 +1,9 @@
 #include "linsolve/linear_solver.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <vector>
 
 #include <fmt/format.h>
 #include <Eigen/IterativeLinearSolvers>
@@ -168,6 +170,52 @@ std::unique_ptr<LinearSolver> make_solver(Method method, const Settings& setting
       return make_petsc_solver(method, settings);
   }
   return nullptr;
+}
+
+CsrMatrix amg_matrix(const CsrMatrix& a, double drop) {
+  HM_ASSERT(drop >= 0.0 && drop < 1.0, "amg_matrix: drop {} outside [0, 1)", drop);
+  HM_ASSERT(a.isCompressed() && a.rows() == a.cols(), "amg_matrix: a square compressed matrix");
+  if (drop == 0.0) return a;
+  // Built row by row straight into compressed storage (a's columns are sorted in each row):
+  // the setup of every PPE pays for this, so no triplets and no sort.
+  std::vector<int> starts{0}, columns;
+  std::vector<double> values;
+  columns.reserve(static_cast<std::size_t>(a.nonZeros()));
+  values.reserve(static_cast<std::size_t>(a.nonZeros()));
+  for (int r = 0; r < a.rows(); ++r) {
+    double largest = 0.0, lumped = 0.0;
+    for (CsrMatrix::InnerIterator it(a, r); it; ++it)
+      if (it.col() != r) largest = std::max(largest, std::abs(it.value()));
+    std::size_t diagonal = values.size();  // where the diagonal goes if the row has none
+    bool has_diagonal = false;
+    for (CsrMatrix::InnerIterator it(a, r); it; ++it) {
+      const bool small = it.col() != r && std::abs(it.value()) < drop * largest;
+      if (small) {
+        lumped += it.value();  // onto the diagonal: the row sum stays
+        continue;
+      }
+      if (!has_diagonal && it.col() >= r) {
+        has_diagonal = true;
+        diagonal = values.size();
+        if (it.col() > r) {  // a row without a stored diagonal: a zero one, lumped into
+          columns.push_back(r);
+          values.push_back(0.0);
+        }
+      }
+      columns.push_back(it.col());
+      values.push_back(it.value());
+    }
+    if (!has_diagonal) {
+      diagonal = values.size();
+      columns.push_back(r);
+      values.push_back(0.0);
+    }
+    values[diagonal] += lumped;
+    starts.push_back(static_cast<int>(values.size()));
+  }
+  const Eigen::Map<const CsrMatrix> view(a.rows(), a.cols(), static_cast<int>(values.size()),
+                                         starts.data(), columns.data(), values.data());
+  return CsrMatrix(view);
 }
 
 double relative_residual(const CsrMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {

@@ -92,7 +92,7 @@ class PetscSolver final : public LinearSolver {
           "KSPSetTolerances");
       check(KSPSetInitialGuessNonzero(ksp_, PETSC_TRUE), "KSPSetInitialGuessNonzero");
       configure_preconditioner();
-      set_operator(a);
+      set_operators(a, /*with_preconditioner_matrix=*/true);
       check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
       check(KSPSetUp(ksp_), "KSPSetUp (the preconditioner's setup)");
       PC pc = nullptr;
@@ -113,7 +113,7 @@ class PetscSolver final : public LinearSolver {
       PC pc = nullptr;
       check(KSPGetPC(ksp_, &pc), "KSPGetPC");
       check(PCSetReusePreconditioner(pc, PETSC_TRUE), "PCSetReusePreconditioner");
-      set_operator(a);
+      set_operators(a, /*with_preconditioner_matrix=*/false);
     } catch (const PetscFailure& e) {
       setup_failure_ = e.what();
       release();
@@ -209,8 +209,8 @@ class PetscSolver final : public LinearSolver {
     check(PCSetFromOptions(pc), "PCSetFromOptions");
   }
 
-  /// Copies `a` into a PETSc AIJ matrix (columns sorted row by row) and makes it the operator.
-  void set_operator(const CsrMatrix& a) {
+  /// `a` as a PETSc AIJ matrix (columns sorted row by row).
+  static Mat petsc_matrix(const CsrMatrix& a) {
     HM_ASSERT(a.isCompressed() && a.rows() == a.cols(), "petsc: a square compressed matrix");
     Mat m = nullptr;
     const auto n = static_cast<PetscInt>(a.rows());
@@ -219,17 +219,32 @@ class PetscSolver final : public LinearSolver {
     check(MatSetType(m, MATSEQAIJ), "MatSetType");
     check(MatSeqAIJSetPreallocationCSR(m, a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr()),
           "MatSeqAIJSetPreallocationCSR");
+    return m;
+  }
+
+  /// Makes `a` the operator. With `with_preconditioner_matrix` the hierarchy is (re)built on
+  /// amg_matrix(a, amg_drop); without, the one built for an earlier matrix stays.
+  void set_operators(const CsrMatrix& a, bool with_preconditioner_matrix) {
     if (matrix_ != nullptr) MatDestroy(&matrix_);
-    matrix_ = m;
+    matrix_ = petsc_matrix(a);
     rows_ = a.rows();
-    check(KSPSetOperators(ksp_, matrix_, matrix_), "KSPSetOperators");
+    if (with_preconditioner_matrix) {
+      if (preconditioner_matrix_ != nullptr) MatDestroy(&preconditioner_matrix_);
+      if (settings_.amg_drop > 0.0)
+        preconditioner_matrix_ = petsc_matrix(amg_matrix(a, settings_.amg_drop));
+    }
+    check(KSPSetOperators(ksp_, matrix_,
+                          preconditioner_matrix_ != nullptr ? preconditioner_matrix_ : matrix_),
+          "KSPSetOperators");
   }
 
   void release() {
     if (ksp_ != nullptr) KSPDestroy(&ksp_);
     if (matrix_ != nullptr) MatDestroy(&matrix_);
+    if (preconditioner_matrix_ != nullptr) MatDestroy(&preconditioner_matrix_);
     ksp_ = nullptr;
     matrix_ = nullptr;
+    preconditioner_matrix_ = nullptr;
     rows_ = -1;
   }
 
@@ -238,6 +253,7 @@ class PetscSolver final : public LinearSolver {
   std::string prefix_;
   KSP ksp_ = nullptr;
   Mat matrix_ = nullptr;
+  Mat preconditioner_matrix_ = nullptr;  ///< amg_matrix of the last setup's; null at amg_drop 0
   Eigen::Index rows_ = -1;
 };
 

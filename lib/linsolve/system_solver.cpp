@@ -43,7 +43,7 @@ void SystemSolver::full_setup(const CsrMatrix& a, SystemReport& report) {
 }
 
 SystemReport SystemSolver::solve_with_primary(const CsrMatrix& a, const Eigen::VectorXd& b,
-                                              Eigen::VectorXd& x) {
+                                              Eigen::VectorXd& x, bool keep_preconditioner) {
   SystemReport report;
   report.method = strategy_.primary;
   const bool identical = same_as_set_up(a);
@@ -51,8 +51,9 @@ SystemReport SystemSolver::solve_with_primary(const CsrMatrix& a, const Eigen::V
   if (identical) {
     report.reused = true;
     ++counters_.identical_reuses;
-  } else if (strategy_.reuse.across_steps && ready_ && a.rows() == matrix_.rows() &&
-             age_ < strategy_.reuse.max_age) {
+  } else if (ready_ && a.rows() == matrix_.rows() &&
+             (keep_preconditioner ||
+              (strategy_.reuse.across_steps && age_ < strategy_.reuse.max_age))) {
     matrix_ = a;
     stale = primary_->reuse_for(matrix_);
     if (stale) {
@@ -74,8 +75,9 @@ SystemReport SystemSolver::solve_with_primary(const CsrMatrix& a, const Eigen::V
   const Eigen::VectorXd guess = x;
   SolveStats s = primary_->solve(b, x);
   report.solve_seconds += s.seconds;
-  const bool grown = stale && baseline_iterations_ > 0 &&
-                     s.iterations > strategy_.reuse.growth * baseline_iterations_;
+  const double allowed = keep_preconditioner ? 2.0 * baseline_iterations_ + 2.0
+                                             : strategy_.reuse.growth * baseline_iterations_;
+  const bool grown = stale && baseline_iterations_ > 0 && s.iterations > allowed;
   if (stale && (!s.converged || grown)) {
     // The kept preconditioner no longer pays: set up for this matrix and solve again.
     report.discarded_iterations += s.iterations;
@@ -97,13 +99,14 @@ SystemReport SystemSolver::solve_with_primary(const CsrMatrix& a, const Eigen::V
   return report;
 }
 
-SystemReport SystemSolver::solve(const CsrMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x) {
+SystemReport SystemSolver::solve(const CsrMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                 bool keep_preconditioner) {
   HM_ASSERT(a.rows() == a.cols() && b.size() == a.rows() && x.size() == a.rows(),
             "linear system: matrix {}×{}, rhs {}, guess {}", a.rows(), a.cols(), b.size(),
             x.size());
   ++counters_.solves;
   const Eigen::VectorXd guess = x;
-  SystemReport report = solve_with_primary(a, b, x);
+  SystemReport report = solve_with_primary(a, b, x, keep_preconditioner);
   if (report.converged || !fallback_) return report;
   // The primary failed: the fallback from the same guess, set up for this matrix.
   ++counters_.fallbacks;

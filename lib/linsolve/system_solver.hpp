@@ -53,8 +53,13 @@ struct SystemCounters {
 class SystemSolver {
  public:
   SystemSolver(const Strategy& strategy, const Settings& settings);
-  /// Solves a x = b from the guess in x.
-  SystemReport solve(const CsrMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  /// Solves a x = b from the guess in x. With `keep_preconditioner` a matrix of the last one's
+  /// size that differs from it in a few rows (the PPE's re-solve after wall tension is
+  /// released) is solved on the preconditioner already built, whatever the policy; it is set
+  /// up afresh only if that solve fails or needs more than 2 × (iterations after the last
+  /// setup) + 2.
+  SystemReport solve(const CsrMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                     bool keep_preconditioner = false);
   const SystemCounters& counters() const { return counters_; }
   const Strategy& strategy() const { return strategy_; }
   /// Forget the last setup (the next solve sets up).
@@ -62,7 +67,8 @@ class SystemSolver {
 
  private:
   bool same_as_set_up(const CsrMatrix& a) const;
-  SystemReport solve_with_primary(const CsrMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x);
+  SystemReport solve_with_primary(const CsrMatrix& a, const Eigen::VectorXd& b, Eigen::VectorXd& x,
+                                  bool keep_preconditioner);
   void full_setup(const CsrMatrix& a, SystemReport& report);
 
   Strategy strategy_;

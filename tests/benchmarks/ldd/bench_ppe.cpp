@@ -4,7 +4,10 @@
 // and 3-D from 27 k to 500 k. For each backend: setup and solve seconds, iterations from a cold
 // start (x = 0) and from the run's warm start, at the runs' tolerance (1e-6), and the relative
 // residual recomputed from the matrix, independently of the solver ("true_residual").
-//   BM_PpeSolve/<D>/<size>/<method>   method 0 jacobi, 1 ilu, 2 boomeramg, 3 gamg
+//   BM_PpeSolve/<D>/<size>/<method>/<drop>   method 0 jacobi, 1 ilu, 2 boomeramg, 3 gamg;
+//                                     drop (AMG only): amg_drop in hundredths, 0 or 5 (the
+//                                     default: the hierarchy on the matrix without its small
+//                                     entries, linsolve::amg_matrix)
 //   BM_PpeReuse/<policy>              60 steps of the collapsing 2-D column (~40 k points):
 //                                     0 a setup every step, 1 reuse across steps (growth 1.3)
 // The machine's two cores: the native solvers run on OMP_NUM_THREADS threads, PETSc on one.
@@ -122,7 +125,9 @@ void BM_PpeSolve(benchmark::State& state) {
     return;
   }
   const Captured& c = captured<D>(static_cast<int>(state.range(0)));
-  const linsolve::Settings settings{.tolerance = 1e-6, .max_iterations = 20000};
+  const linsolve::Settings settings{.tolerance = 1e-6,
+                                    .max_iterations = 20000,
+                                    .amg_drop = 0.01 * static_cast<double>(state.range(2))};
   double setup = 0, cold = 0, warm = 0, residual = 0;
   int cold_iterations = 0, warm_iterations = 0;
   bool converged = true;
@@ -144,7 +149,14 @@ void BM_PpeSolve(benchmark::State& state) {
     warm_iterations = s1.iterations;
     converged = s0.converged && s1.converged;
   }
-  state.SetLabel(linsolve::to_string(method));
+  const bool amg = method == linsolve::Method::boomeramg || method == linsolve::Method::gamg;
+  state.SetLabel(
+      amg ? fmt::format("{}, amg_drop {}", linsolve::to_string(method), settings.amg_drop)
+          : linsolve::to_string(method));
+  if (amg)
+    state.counters["amg_nnz_per_row"] =
+        static_cast<double>(linsolve::amg_matrix(c.matrix, settings.amg_drop).nonZeros()) /
+        static_cast<double>(c.rhs.size());
   state.counters["points"] = static_cast<double>(c.points);
   state.counters["unknowns"] = static_cast<double>(c.rhs.size());
   state.counters["nnz_per_row"] =
@@ -187,15 +199,18 @@ void BM_PpeReuse(benchmark::State& state) {
   state.counters["solve_s_per_step"] = solve / steps;
 }
 
+/// Jacobi and ILU once; each AMG with its hierarchy on the whole matrix and on the dropped one.
+void methods_at(benchmark::internal::Benchmark* b, int size, bool with_ilu) {
+  b->Args({size, 0, 0});
+  if (with_ilu) b->Args({size, 1, 0});
+  for (int m = 2; m < 4; ++m)
+    for (int drop : {0, 5}) b->Args({size, m, drop});
+}
 void sizes_2d(benchmark::internal::Benchmark* b) {
-  for (int s = 0; s < 5; ++s)
-    for (int m = 0; m < 4; ++m)
-      if (!(m == 1 && s > 2)) b->Args({s, m});  // ILU's serial factorisation: to 160 k
+  for (int s = 0; s < 5; ++s) methods_at(b, s, s <= 2);  // ILU's serial factorisation: to 160 k
 }
 void sizes_3d(benchmark::internal::Benchmark* b) {
-  for (int s = 0; s < 3; ++s)
-    for (int m = 0; m < 4; ++m)
-      if (!(m == 1 && s > 0)) b->Args({s, m});
+  for (int s = 0; s < 3; ++s) methods_at(b, s, s == 0);
 }
 
 BENCHMARK(BM_PpeSolve<2>)->Apply(sizes_2d)->Iterations(1)->Unit(benchmark::kSecond)->UseRealTime();
