@@ -163,7 +163,10 @@ SurfaceFile read_ascii_stl(const std::string& text, SurfaceBuilder b) {
   const std::string& file = b.file();
   auto fail = [&](int line, const std::vector<std::string_view>& w, const char* expected) {
     std::string got;
-    for (auto word : w) got += (got.empty() ? "" : " ") + std::string(word);
+    for (auto word : w) {
+      if (!got.empty()) got += ' ';
+      got += word;
+    }
     input_error("geometry file '{}', line {}: '{}' where an ASCII STL has {}", file, line, got,
                 expected);
   };

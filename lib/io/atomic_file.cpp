@@ -9,6 +9,8 @@
 #include <cstring>
 #include <random>
 
+#include <fmt/format.h>
+
 #include "core/errors.hpp"
 
 namespace hm::io {
@@ -59,7 +61,7 @@ AtomicOutput::AtomicOutput(std::filesystem::path final_path) : final_path_(std::
   if (!std::filesystem::is_directory(folder))
     input_error("cannot create the output folder '{}' for '{}'", folder.string(),
                 final_path_.string());
-  temp_path_ = folder / ("." + final_path_.filename().string() + ".tmp-" + random_suffix());
+  temp_path_ = folder / fmt::format(".{}.tmp-{}", final_path_.filename().string(), random_suffix());
   slot_ = register_pending(temp_path_);
 }
 

@@ -340,11 +340,12 @@ const std::vector<KeyDecl>& scene_keys() {
               simulate_stage),
       text("solver.preconditioner", "\"automatic\"",
            {"automatic", "jacobi", "ilu", "boomeramg", "gamg"},
-           "PPE solver: BiCGSTAB preconditioned by automatic (2-D in builds with PETSc: BoomerAMG "
-           "for systems of 2000 unknowns or more, Jacobi as its fallback; otherwise Jacobi "
-           "first and ILU when it stalls; the rule is measured, see the README), jacobi, ilu, or "
-           "algebraic multigrid "
-           "from PETSc: boomeramg (hypre) or gamg (smoothed aggregation); the PETSc ones only in "
+           "PPE solver: BiCGSTAB preconditioned by automatic (in builds with PETSc, for systems "
+           "of 2000 unknowns or more in 2-D and 5000 in 3-D: BoomerAMG or Jacobi, whichever "
+           "cost fewer Jacobi-equivalent iterations on the last matrix it solved, the other "
+           "tried again now and then; otherwise Jacobi first and ILU when it stalls; the rule "
+           "is measured, see the README), jacobi, ilu, or algebraic multigrid from PETSc: "
+           "boomeramg (hypre) or gamg (smoothed aggregation); the PETSc ones only in "
            "builds with PETSc (fsi-simulate --version lists them)",
            simulate_stage),
       number("solver.amg_drop", "0.05", "1", 0, 0.5,

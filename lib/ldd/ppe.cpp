@@ -187,7 +187,8 @@ bool is_available(Preconditioner p) {
 SolverOptions ppe_solver_defaults(int dimension) {
   HM_ASSERT(dimension == 2 || dimension == 3, "dimension {}", dimension);
   SolverOptions o;
-  o.amg_unknowns = dimension == 2 ? 2000 : 0;
+  o.amg_unknowns = dimension == 2 ? 2000 : 5000;
+  o.amg_setup_cost = dimension == 2 ? 32.0 : 45.0;
   return o;
 }
 
@@ -206,6 +207,53 @@ linsolve::Strategy solver_strategy(const SolverOptions& o, Index unknowns) {
 PoissonSolver::PoissonSolver(const SolverOptions& options) : options_(options) {
   HM_ASSERT(is_available(options.preconditioner), "PPE preconditioner {} is not built in",
             to_string(options.preconditioner));
+  HM_ASSERT(options.probe_interval >= 1 && options.max_probe_interval >= options.probe_interval,
+            "PPE backend trials every {} … {} matrices", options.probe_interval,
+            options.max_probe_interval);
+  choice_.interval = options.probe_interval;
+}
+
+linsolve::SystemSolver& PoissonSolver::chosen_backend(const linsolve::CsrMatrix& matrix,
+                                                      bool same_matrix) {
+  auto backend = [&](bool amg) -> linsolve::SystemSolver& {
+    auto& solver = amg ? large_ : small_;  // solver_strategy's below and from amg_unknowns on
+    if (!solver)
+      solver = std::make_unique<linsolve::SystemSolver>(
+          solver_strategy(options_, amg ? options_.amg_unknowns : 0), settings_of(options_));
+    return *solver;
+  };
+  if (choice_.started && (same_matrix || backend(choice_.amg).holds(matrix)))
+    return backend(choice_.amg);
+  if (choice_.started) choose_next_backend();
+  choice_.started = true;
+  return backend(choice_.amg);
+}
+
+void PoissonSolver::choose_next_backend() {
+  auto& c = choice_;
+  const int used = c.amg ? 1 : 0, other = 1 - used;
+  c.cost[used] = c.current_cost;
+  c.current_cost = 0.0;
+  c.idle[used] = 0;
+  ++c.idle[other];
+  if (c.trial) {  // the trial's verdict sets when the loser is tried again
+    c.trial = false;
+    c.interval = c.cost[used] <= c.cost[other]
+                     ? options_.probe_interval
+                     : std::min(2 * c.interval, options_.max_probe_interval);
+  }
+  if (c.cost[other] < 0.0 || c.idle[other] >= c.interval) {
+    c.amg = other == 1;
+    c.trial = true;
+    return;
+  }
+  c.amg = c.cost[1] < c.cost[0];
+}
+
+double PoissonSolver::cost_of(const SolveReport& r) const {
+  const double iterations = r.iterations + r.discarded_iterations;
+  if (!choice_.amg) return iterations;
+  return (r.setup ? options_.amg_setup_cost : 0.0) + options_.amg_cycle_cost * iterations;
 }
 
 linsolve::SystemSolver& PoissonSolver::solver_for(Index unknowns) {
@@ -253,7 +301,10 @@ SolveReport PoissonSolver::solve(const PoissonSystem& sys, std::vector<double>& 
   SolveReport rep;
   rep.unknowns = m;
   rep.nonzeros = sys.matrix.nonZeros();
-  auto& solver = solver_for(m);
+  const bool choosing = options_.preconditioner == Preconditioner::automatic &&
+                        options_.amg_unknowns > 0 && m >= options_.amg_unknowns &&
+                        linsolve::is_available(linsolve::Method::boomeramg);
+  auto& solver = choosing ? chosen_backend(sys.matrix, keep_preconditioner) : solver_for(m);
   rep.preconditioner = preconditioner_of(solver.strategy().primary);
   Eigen::VectorXd x(m);
   for (Index r = 0; r < m; ++r) x[r] = pressure[sys.point_of[r]];
@@ -271,6 +322,7 @@ SolveReport PoissonSolver::solve(const PoissonSystem& sys, std::vector<double>& 
     rep.solve_seconds = r.solve_seconds;
     rep.failure = r.failure;
   }
+  if (choosing) choice_.current_cost += cost_of(rep);
   // A failed solve leaves the warm start in place (never a partial or non-finite iterate).
   const bool use = rep.converged || x.allFinite();
   for (std::size_t i = 0; i < pressure.size(); ++i)

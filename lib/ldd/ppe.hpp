@@ -13,6 +13,7 @@
 // IncompleteLUT) or algebraic multigrid (PETSc: BoomerAMG, GAMG); by default Jacobi with an ILU
 // fallback (see Preconditioner). Warm-started from the previous pressure; iterations and
 // residual are returned, not thrown.
+#include <array>
 #include <memory>
 #include <span>
 #include <string>
@@ -84,28 +85,44 @@ struct SolverOptions {
   /// boomeramg, gamg: the hierarchy is built on the PPE matrix without its entries below
   /// amg_drop × their row's largest, lumped onto the diagonal (linsolve::amg_matrix).
   double amg_drop = 0.05;
-  /// automatic, in builds with PETSc: BoomerAMG (Jacobi as its fallback) for systems of at
-  /// least this many unknowns; 0: never. The flow's default is measured per dimension:
-  /// ppe_solver_defaults.
+  /// automatic, in builds with PETSc: for systems of at least this many unknowns, the cheaper
+  /// of BoomerAMG (Jacobi as its fallback) and Jacobi (ILU as its fallback) by what each cost
+  /// on the last matrix it served; below, Jacobi. 0: never BoomerAMG. The flow's default is
+  /// measured per dimension: ppe_solver_defaults.
   Index amg_unknowns = 0;
+  /// The costs compared, in Jacobi iterations on the same matrix, over all the solves of one
+  /// matrix (a step's passes, the strong coupling's sub-iterations and added-mass solves):
+  /// Jacobi's iterations against amg_setup_cost + amg_cycle_cost × BoomerAMG's iterations.
+  /// Measured on the dam-break matrices (bench_ppe, 1 thread, amg_drop 0.05): a setup costs
+  /// 30–36 Jacobi iterations in 2-D, 41–48 in 3-D; a BoomerAMG iteration 3.3–5.8. Counted in
+  /// iterations, not seconds, so that a run's choices do not depend on the machine's load.
+  double amg_setup_cost = 40.0;
+  double amg_cycle_cost = 4.5;
+  /// The backend not in use is tried again on one matrix after this many, an interval that
+  /// doubles (up to max_probe_interval) each time the trial loses.
+  int probe_interval = 8;
+  int max_probe_interval = 256;
   /// Setups are always reused for an unchanged matrix; across_steps keeps a preconditioner
   /// for changed matrices of the same size too (linsolve::SystemSolver).
   linsolve::ReusePolicy reuse;
 };
 
-/// The flow solver's PPE options in `dimension` D: automatic with BoomerAMG from 2 000 unknowns
-/// in 2-D and never in 3-D. Measured over whole runs of the collapsing dam break on 1 thread
-/// (bench_flow BM_PpeBreakEven<D>, each row one run of the benchmark), PPE seconds a step,
-/// Jacobi against BoomerAMG with a setup every step: 2-D 3.3 / 3.9 ms at 1.45 k points (65
-/// against 4.9 iterations), 8.4 / 7.1 ms at 2.7 k, 24 / 14 at 5.4 k, 64 / 28 at 10.4 k,
-/// 173 / 59 at 20.8 k (232 against 5.6): even near 2 k. 3-D, where the run's warm start leaves
-/// Jacobi 75–126 iterations and the AMG setup costs more per row (75 entries a row against 21):
-/// 25 / 36 ms at 4 k points, 99 / 151 at 13.5 k, 315 / 434 at 32 k, 608 / 768 at 96 k
-/// (BM_DamBreak3D): Jacobi wins.
+/// The flow solver's PPE options in `dimension` D: automatic choosing between BoomerAMG and
+/// Jacobi from 2 000 unknowns in 2-D and from 5 000 in 3-D (amg_setup_cost 32 and 45).
+/// Measured over whole runs of the collapsing dam break on 1 thread (bench_flow
+/// BM_PpeBreakEven<D>), PPE seconds a step, Jacobi against BoomerAMG: 2-D 3.3 / 3.9 ms at 1.45 k
+/// points (65 against 4.9 iterations), 8.4 / 7.1 at 2.7 k, 24 / 14 at 5.4 k, 173 / 59 at 20.8 k;
+/// 3-D (the hierarchy on the dropped matrix, one setup for both passes of the tension release)
+/// 13.8 / 14.2 ms at 1.5 k fluid points (5.2 k with the wall nodes), 44 / 36 at 4 k, 603 / 302
+/// at 32 k, 873 / 537 at 96 k. The size alone does not decide: on the sloshing tank
+/// (rhee_sloshing, 8.7 k unknowns, 32 Jacobi iterations a pass from the last step's pressure)
+/// BoomerAMG's setups cost 261 s of PPE over the run against Jacobi's 163 s. Hence the choice
+/// by iterations, in the run (PoissonSolver).
 SolverOptions ppe_solver_defaults(int dimension);
 
 /// The linear-solver strategy (primary, fallback, reuse) that `options` stand for on a system
-/// of `unknowns` unknowns.
+/// of `unknowns` unknowns (automatic from amg_unknowns on: BoomerAMG's, one of the two
+/// PoissonSolver chooses between).
 linsolve::Strategy solver_strategy(const SolverOptions& options, Index unknowns);
 
 struct SolveReport {
@@ -143,8 +160,27 @@ class PoissonSolver {
 
  private:
   linsolve::SystemSolver& solver_for(Index unknowns);
+  /// automatic from amg_unknowns on: the backend for `matrix` (the current one's while the
+  /// matrix is the one it was last given or `same_matrix` says its rows were only fixed).
+  linsolve::SystemSolver& chosen_backend(const linsolve::CsrMatrix& matrix, bool same_matrix);
+  /// Records the finished matrix's cost and picks the backend of the next one.
+  void choose_next_backend();
+  double cost_of(const SolveReport& report) const;  ///< in Jacobi iterations
+
+  /// automatic's choice between BoomerAMG (large_) and Jacobi (small_), over the run.
+  struct BackendChoice {
+    bool amg = true;  ///< the backend of the current matrix
+    std::array<double, 2> cost{-1.0,
+                               -1.0};  ///< [Jacobi, BoomerAMG] on their last matrix; < 0: none
+    std::array<int, 2> idle{0, 0};     ///< matrices since each last served
+    double current_cost = 0.0;         ///< on the current matrix so far
+    bool trial = false;                ///< the current matrix is a trial of the other
+    bool started = false;              ///< a matrix has been solved
+    int interval = 0;                  ///< matrices before the next trial
+  };
 
   SolverOptions options_;
+  BackendChoice choice_;
   /// Made on first use: the one of the options, or automatic's below amg_unknowns (Jacobi) …
   std::unique_ptr<linsolve::SystemSolver> small_;
   std::unique_ptr<linsolve::SystemSolver> large_;  ///< … and from amg_unknowns on (BoomerAMG)

@@ -12,6 +12,13 @@ bool same_array(const T* a, const T* b, Eigen::Index n) {
   return std::equal(a, a + n, b);
 }
 
+bool same_matrix(const CsrMatrix& a, const CsrMatrix& b) {
+  return a.rows() == b.rows() && a.nonZeros() == b.nonZeros() &&
+         same_array(a.outerIndexPtr(), b.outerIndexPtr(), a.rows() + 1) &&
+         same_array(a.innerIndexPtr(), b.innerIndexPtr(), a.nonZeros()) &&
+         same_array(a.valuePtr(), b.valuePtr(), a.nonZeros());
+}
+
 }  // namespace
 
 SystemSolver::SystemSolver(const Strategy& strategy, const Settings& settings)
@@ -24,16 +31,17 @@ SystemSolver::SystemSolver(const Strategy& strategy, const Settings& settings)
 }
 
 bool SystemSolver::same_as_set_up(const CsrMatrix& a) const {
-  if (!ready_ || stale_ || a.rows() != matrix_.rows() || a.nonZeros() != matrix_.nonZeros())
-    return false;
-  return same_array(a.outerIndexPtr(), matrix_.outerIndexPtr(), a.rows() + 1) &&
-         same_array(a.innerIndexPtr(), matrix_.innerIndexPtr(), a.nonZeros()) &&
-         same_array(a.valuePtr(), matrix_.valuePtr(), a.nonZeros());
+  return ready_ && same_matrix(a, set_up_matrix_);
+}
+
+bool SystemSolver::holds(const CsrMatrix& a) const {
+  return same_as_set_up(a) || (ready_ && same_matrix(a, matrix_));
 }
 
 void SystemSolver::full_setup(const CsrMatrix& a, SystemReport& report) {
   if (&a != &matrix_) matrix_ = a;
   ready_ = primary_->setup(matrix_);
+  set_up_matrix_ = matrix_;
   stale_ = false;
   age_ = 0;
   baseline_iterations_ = 0;
@@ -48,7 +56,18 @@ SystemReport SystemSolver::solve_with_primary(const CsrMatrix& a, const Eigen::V
   report.method = strategy_.primary;
   const bool identical = same_as_set_up(a);
   bool stale = false;
-  if (identical) {
+  if (identical && stale_) {
+    // Back from a matrix it served stale (a few rows fixed, keep_preconditioner) to the one
+    // its preconditioner was built for: the strong coupling's next sub-iteration.
+    matrix_ = a;
+    stale_ = false;
+    if (primary_->reuse_for(matrix_)) {
+      report.reused = true;
+      ++counters_.identical_reuses;
+    } else {
+      full_setup(matrix_, report);
+    }
+  } else if (identical) {
     report.reused = true;
     ++counters_.identical_reuses;
   } else if (ready_ && a.rows() == matrix_.rows() &&

@@ -62,6 +62,9 @@ class SystemSolver {
                      bool keep_preconditioner = false);
   const SystemCounters& counters() const { return counters_; }
   const Strategy& strategy() const { return strategy_; }
+  /// Whether `a` is the matrix of the last setup or the last one solved (a setup serves it
+  /// without being rebuilt).
+  bool holds(const CsrMatrix& a) const;
   /// Forget the last setup (the next solve sets up).
   void invalidate() { ready_ = false; }
 
@@ -75,7 +78,8 @@ class SystemSolver {
   Settings settings_;
   std::unique_ptr<LinearSolver> primary_;
   std::unique_ptr<LinearSolver> fallback_;
-  CsrMatrix matrix_;  ///< the matrix the primary was last given (the backends refer to it)
+  CsrMatrix matrix_;         ///< the matrix the primary was last given (the backends refer to it)
+  CsrMatrix set_up_matrix_;  ///< the one of the last full setup
   bool ready_ = false;
   bool stale_ = false;           ///< matrix_ is not the one the preconditioner was built for
   int age_ = 0;                  ///< different matrices served since the last full setup

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <string>
 
 #include <omp.h>
 
@@ -248,6 +249,49 @@ TEST(LddPpe, FixingReleasedNodesInPlaceGivesTheReassembledSystemsPressure) {
       at_released / rho_g_h);
   EXPECT_LT(difference, 1e-7 * rho_g_h);
   EXPECT_LT(at_released, 1e-7 * rho_g_h);
+}
+
+// automatic from amg_unknowns on: BoomerAMG first, Jacobi tried on the next matrix, then the
+// cheaper by iterations (Jacobi's against 32 + 4.5 × BoomerAMG's), the other tried again after
+// 8, 16, 32 … matrices. A 2-D column of 3 600 points, 20 matrices (the system scaled by
+// 1 + 1e-9 k: the same pressure, another matrix each time). From a warm start at the answer
+// Jacobi needs almost nothing and wins; from a cold start it needs far more than BoomerAMG's
+// setup and cycles and loses.
+TEST(LddPpe, AutomaticChoosesTheCheaperSolverByItsIterations) {
+  if (!linsolve::is_available(linsolve::Method::boomeramg)) GTEST_SKIP() << "built without PETSc";
+  const auto c = test::water_column<2>(Vec<2>(0.5, 0.4), 0.3, 0.005, 0.05, Preconditioner::jacobi);
+  SolverOptions o = ppe_solver_defaults(2);
+  ASSERT_GE(static_cast<Index>(c.system.point_of.size()), o.amg_unknowns);
+  for (const bool warm : {true, false}) {
+    PoissonSolver solver(o);
+    std::vector<Preconditioner> used;
+    std::vector<int> iterations;
+    for (int k = 0; k < 20; ++k) {
+      PoissonSystem sys = c.system;
+      sys.matrix *= 1.0 + 1e-9 * k;
+      sys.rhs *= 1.0 + 1e-9 * k;
+      std::vector<double> p = c.points.pressure;
+      if (!warm) std::fill(p.begin(), p.end(), 0.0);
+      const auto r = solver.solve(sys, p);
+      ASSERT_TRUE(r.converged) << r.failure;
+      used.push_back(r.preconditioner);
+      iterations.push_back(r.iterations);
+      for (std::size_t i = 0; i < p.size(); ++i)
+        ASSERT_NEAR(p[i], c.points.pressure[i], 1e-4 * 9810.0 * 0.3);
+    }
+    std::string sequence;
+    for (std::size_t k = 0; k < used.size(); ++k)
+      sequence +=
+          (used[k] == Preconditioner::boomeramg ? " B" : " J") + std::to_string(iterations[k]);
+    std::printf("%s start, solver and iterations:%s\n", warm ? "warm" : "cold", sequence.c_str());
+    EXPECT_EQ(used[0], Preconditioner::boomeramg);
+    EXPECT_EQ(used[1], Preconditioner::jacobi);  // the first trial
+    const auto winner = warm ? Preconditioner::jacobi : Preconditioner::boomeramg;
+    const auto trials =
+        std::count_if(used.begin() + 2, used.end(), [&](auto p) { return p != winner; });
+    EXPECT_LE(trials, 2) << sequence;  // the loser tried again after 8, then 16 matrices
+    EXPECT_EQ(used[2], winner) << sequence;
+  }
 }
 
 TEST(LddPpe, ClosedBoxIsPinned) {
