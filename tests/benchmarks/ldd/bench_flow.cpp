@@ -7,7 +7,9 @@
 //                                    matrix without its small entries, the default amg_drop),
 //                                    2: BoomerAMG kept across steps (ReusePolicy::across_steps),
 //                                    3: BoomerAMG with its hierarchy on the whole matrix
-//                                    (amg_drop = 0, as before the drop)
+//                                    (amg_drop = 0, as before the drop), 4: automatic, the
+//                                    flow's default (ppe_solver_defaults: the choice between
+//                                    BoomerAMG and Jacobi by their iterations)
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
@@ -41,6 +43,7 @@ FlowSolver<D> dam_break(double dx, int ppe) {
   if (ppe > 0) o.ppe.preconditioner = Preconditioner::boomeramg;
   o.ppe.reuse.across_steps = ppe == 2;
   if (ppe == 3) o.ppe.amg_drop = 0.0;
+  if (ppe == 4) o.ppe = ppe_solver_defaults(D);
   auto x = seed_box<D>(fluid, dx, walls);
   return FlowSolver<D>(std::move(walls), x, {}, o);
 }
@@ -72,7 +75,7 @@ void BM_DamBreak(benchmark::State& state, double dx, int steps, int threads, int
   }
   const double total = phases.total();
   constexpr const char* kLabels[] = {"jacobi", "boomeramg", "boomeramg, kept across steps",
-                                     "boomeramg on the whole matrix"};
+                                     "boomeramg on the whole matrix", "automatic"};
   state.SetLabel(kLabels[ppe]);
   state.counters["points"] = points / total_steps;
   state.counters["particle_steps_per_s"] = points / total;
@@ -114,7 +117,7 @@ void BM_PpeBreakEven(benchmark::State& state) {
 }
 
 void threads_and_ppe(benchmark::internal::Benchmark* b) {
-  for (int ppe = 0; ppe < 4; ++ppe)
+  for (int ppe = 0; ppe < 5; ++ppe)
     for (int threads = 1; threads <= 2; ++threads) b->Args({threads, ppe});
 }
 
