@@ -215,12 +215,9 @@ PoissonSolver::PoissonSolver(const SolverOptions& options) : options_(options) {
 
 linsolve::SystemSolver& PoissonSolver::chosen_backend(const linsolve::CsrMatrix& matrix,
                                                       bool same_matrix) {
+  // solver_for makes them: Jacobi/ILU below amg_unknowns, BoomerAMG/Jacobi from it on.
   auto backend = [&](bool amg) -> linsolve::SystemSolver& {
-    auto& solver = amg ? large_ : small_;  // solver_strategy's below and from amg_unknowns on
-    if (!solver)
-      solver = std::make_unique<linsolve::SystemSolver>(
-          solver_strategy(options_, amg ? options_.amg_unknowns : 0), settings_of(options_));
-    return *solver;
+    return solver_for(amg ? options_.amg_unknowns : 0);
   };
   if (choice_.started && (same_matrix || backend(choice_.amg).holds(matrix)))
     return backend(choice_.amg);

@@ -60,15 +60,15 @@ bool fix_at_zero(PoissonSystem& system, std::span<const Index> points);
 
 /// The PPE's linear solver (linsolve/linear_solver.hpp has the backends).
 /// automatic: Jacobi, and ILU (IncompleteLUT) from the same warm start only if Jacobi does not
-/// converge within max_iterations. Measured on hydrostatic tanks (Release, cold start, tol 1e-6;
-/// tests/benchmarks/ldd BM_PpeIterations / BM_PpeSolve): Jacobi needs 5–10× more iterations but
-/// is faster at every size — 2-D 1.7k / 25k / 98k points: 1.9 / 116 / 872 ms against ILU
-/// 8.6 / 216 / 1398 ms; 3-D 9k / 53k / 240k points: 19 / 224 / 1271 ms against ILU
-/// 290 / 3420 / 21 506 ms. IncompleteLUT factorises serially and its cost grows with the row
-/// length (3-D rows hold ~60 entries). Eigen has no ILU(0), and IncompleteCholesky needs a
-/// symmetric matrix, which the Neumann rows are not.
-/// boomeramg, gamg: PETSc's BiCGSTAB with algebraic multigrid (builds with PETSc only), no
-/// fallback: their failure is the solve's.
+/// converge within max_iterations; from SolverOptions::amg_unknowns on (builds with PETSc),
+/// BoomerAMG or that, whichever costs less in the run. Measured on hydrostatic tanks (Release, cold
+/// start, tol 1e-6; tests/benchmarks/ldd BM_PpeIterations / BM_PpeSolve): Jacobi needs 5–10× more
+/// iterations but is faster at every size — 2-D 1.7k / 25k / 98k points: 1.9 / 116 / 872 ms against
+/// ILU 8.6 / 216 / 1398 ms; 3-D 9k / 53k / 240k points: 19 / 224 / 1271 ms against ILU 290 / 3420 /
+/// 21 506 ms. IncompleteLUT factorises serially and its cost grows with the row length (3-D rows
+/// hold ~60 entries). Eigen has no ILU(0), and IncompleteCholesky needs a symmetric matrix, which
+/// the Neumann rows are not. boomeramg, gamg: PETSc's BiCGSTAB with algebraic multigrid (builds
+/// with PETSc only), no fallback: their failure is the solve's.
 enum class Preconditioner : std::uint8_t { jacobi, ilu, automatic, boomeramg, gamg };
 
 /// "jacobi", "ilu", "automatic", "boomeramg", "gamg".
@@ -170,13 +170,13 @@ class PoissonSolver {
   /// automatic's choice between BoomerAMG (large_) and Jacobi (small_), over the run.
   struct BackendChoice {
     bool amg = true;  ///< the backend of the current matrix
-    std::array<double, 2> cost{-1.0,
-                               -1.0};  ///< [Jacobi, BoomerAMG] on their last matrix; < 0: none
-    std::array<int, 2> idle{0, 0};     ///< matrices since each last served
-    double current_cost = 0.0;         ///< on the current matrix so far
-    bool trial = false;                ///< the current matrix is a trial of the other
-    bool started = false;              ///< a matrix has been solved
-    int interval = 0;                  ///< matrices before the next trial
+    /// [Jacobi, BoomerAMG] on their last matrix, in Jacobi iterations; < 0: not yet solved
+    std::array<double, 2> cost{-1.0, -1.0};
+    std::array<int, 2> idle{0, 0};  ///< matrices since each last served
+    double current_cost = 0.0;      ///< on the current matrix so far
+    bool trial = false;             ///< the current matrix is a trial of the other
+    bool started = false;           ///< a matrix has been solved
+    int interval = 0;               ///< matrices before the next trial
   };
 
   SolverOptions options_;
