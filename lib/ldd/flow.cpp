@@ -11,6 +11,8 @@
 #include <Eigen/SparseCore>
 
 #include "core/log.hpp"
+#include "ldd/kernels.hpp"
+#include "ldd/point_loop.hpp"
 #include "ldd/volume.hpp"
 
 namespace hm::ldd {
@@ -440,16 +442,14 @@ void FlowSolver<D>::advect(double dt) {
     wall_move = std::max(wall_move, (points_.position[i] - before[k++]).norm());
     last_max_wall_speed_ = std::max(last_max_wall_speed_, points_.wall_velocity[i].norm());
   }
-  const Index n = points_.size();
   step_start_ = points_.position;
-  outside_.assign(static_cast<std::size_t>(n), 0);
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    if (!is_fluid(points_, i)) continue;
+  outside_.assign(static_cast<std::size_t>(points_.size()), 0);
+  for_each_point(owned(), [&](Index i) {
+    if (!is_fluid(points_, i)) return;
     const Vec<D> dr = dt * points_.velocity[i];
     points_.position[i] += dr;
     wall_distance_[i] -= dr.norm() + wall_move;
-  }
+  });
   keep_clear_of_walls(false);
 }
 
@@ -462,57 +462,23 @@ double FlowSolver<D>::typical_step() const {
 }
 
 template <int D>
-bool FlowSolver<D>::came_through(const WallMesh<D>& wall, Index i) const {
-  // The point crossed the wall this step, or the wall swept over it (the walls are at t + Δt
-  // before the step starts). Without a step start (the set-up) every point is taken to have
-  // come through.
-  if (step_start_.size() != static_cast<std::size_t>(points_.size())) return true;
-  return wall.crosses(step_start_[i], points_.position[i]) ||
-         wall.closest(step_start_[i]).signed_distance < 0.0;
-}
-
-template <int D>
 void FlowSolver<D>::keep_clear_of_walls(bool all_points) {
   const double clearance = 0.5 * options_.pbd_distance * options_.dx;
-  const Index n = points_.size();
-#pragma omp parallel for schedule(dynamic, 256)
-  for (Index i = 0; i < n; ++i) {
-    if (!is_fluid(points_, i)) continue;
-    if (!all_points && wall_distance_[i] >= clearance) continue;
-    double nearest = std::numeric_limits<double>::infinity();
-    // Two passes settle corners: leaving one wall may bring the point too close to another.
-    for (int pass = 0; pass < 2; ++pass) {
-      bool moved = false;
-      nearest = std::numeric_limits<double>::infinity();
-      for (const auto& wall : walls_) {
-        const auto c = wall.closest(points_.position[i]);
-        // A thin wall is wetted on both sides: the side is the sign of the distance.
-        const double side = wall.thin() && c.signed_distance < 0.0 ? -1.0 : 1.0;
-        const double distance = side * c.signed_distance;
-        const Vec<D> normal = side * c.normal;
-        if (distance < 0.0 && !wall.thin() && !came_through(wall, i)) {
-          // Behind a wall it did not cross this step: it left the domain over an open wall
-          // end (the K&O run-up jet over the top of the right wall at L/80). Putting it back
-          // in front teleported it into the fluid inside and the run blew up (t = 0.775 s).
-          outside_[i] = 1;
-          nearest = std::min(nearest, -distance);
-          continue;
-        }
-        if (distance < clearance) {
-          points_.position[i] = c.point + clearance * normal;
-          const Vec<D> relative = points_.velocity[i] - wall.velocity_at(c.element, c.barycentric);
-          const double towards = relative.dot(normal);
-          if (towards < 0.0) points_.velocity[i] -= towards * normal;
-          moved = true;
-          nearest = std::min(nearest, clearance);
-        } else {
-          nearest = std::min(nearest, distance);
-        }
-      }
-      if (!moved) break;
-    }
-    wall_distance_[i] = nearest;
-  }
+  // Without a step start (the set-up) every point is taken to have come through every wall.
+  const bool started = step_start_.size() == static_cast<std::size_t>(points_.size());
+  for_each_point(
+      owned(),
+      [&](Index i) {
+        if (!is_fluid(points_, i)) return;
+        if (!all_points && wall_distance_[i] >= clearance) return;
+        const auto c = kernels::wall_clearance<D>(walls_, points_.position[i], points_.velocity[i],
+                                                  started ? &step_start_[i] : nullptr, clearance);
+        points_.position[i] = c.position;
+        points_.velocity[i] = c.velocity;
+        if (c.outside) outside_[i] = 1;
+        wall_distance_[i] = c.nearest;
+      },
+      LoopBalance::balanced);
 }
 
 template <int D>
@@ -530,40 +496,25 @@ void FlowSolver<D>::regularise_positions(double dt) {
   // an output time moved points by 0.4 dx in a sliver of time, the PPE turned the divergence of
   // that shift into (ρ/Δt)-sized pressures, and the K&O dam break at L/40 blew up at the wall
   // impact (T = 3.14; 200 m/s).
-  const double d0 = o.pbd_distance * o.dx, d0_wall = 0.5 * d0;
-  const double clamp = o.pbd_clamp * o.dx * std::min(1.0, dt / typical_step());
+  const double d0 = o.pbd_distance * o.dx;
+  const kernels::PbdParameters pbd{
+      .distance = d0,
+      .wall_distance = 0.5 * d0,
+      .relaxation = o.pbd_relaxation,
+      .clamp = o.pbd_clamp * o.dx * std::min(1.0, dt / typical_step())};
   std::vector<Vec<D>> shift(static_cast<std::size_t>(n), Vec<D>::Zero());
   std::vector<Vec<D>> total(static_cast<std::size_t>(n), Vec<D>::Zero());
-  for (int it = 0; it < o.pbd_iterations; ++it) {
+  struct Moved {
     bool any = false;
-#pragma omp parallel for schedule(static) reduction(|| : any)
-    for (Index i = 0; i < n; ++i) {
-      shift[i].setZero();
-      if (!is_fluid(points_, i)) continue;
-      Vec<D> delta = Vec<D>::Zero();
-      double count = 0.0;  // pairs, a wall node counting as the wall share it stands for
-      for (Index j : neighbours_.of(i)) {
-        const Vec<D> r = points_.position[j] - points_.position[i];
-        const double d = r.norm();
-        if (d <= 0.0) continue;
-        const double w = ops_.weight_of(j);
-        if (is_fluid(points_, j)) {
-          if (d >= d0) continue;
-          delta -= 0.5 * (d0 - d) / d * r;
-        } else {
-          if (d >= d0_wall) continue;
-          delta -= w * (d0_wall - d) / d * r;
-        }
-        count += w;
-      }
-      if (count == 0.0) continue;
-      delta *= o.pbd_relaxation / count;
-      const double length = delta.norm();
-      if (length > clamp) delta *= clamp / length;
-      shift[i] = delta;
-      any = true;
-    }
-    if (!any) break;
+    void merge(const Moved& other) { any = any || other.any; }
+  };
+  for (int it = 0; it < o.pbd_iterations; ++it) {
+    const auto moved = reduce_points(owned(), Moved{}, [&](Index i, Moved& m) {
+      const auto displacement = kernels::pbd_displacement(cloud(), i, pbd);
+      shift[i] = displacement.value_or(Vec<D>::Zero());
+      m.any = m.any || displacement.has_value();
+    });
+    if (!moved.any) break;
     move_points(shift, total);
   }
   if (o.shifting > 0.0) shift_down_concentration_gradient(dt, total);
@@ -573,44 +524,9 @@ void FlowSolver<D>::regularise_positions(double dt) {
 
 template <int D>
 void FlowSolver<D>::transport_velocity(std::span<const Vec<D>> shift) {
-  const Index n = points_.size();
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i)
+  for_each_point(owned(), [&](Index i) {
     if (is_fluid(points_, i)) points_.velocity[i] += grad_u_[i] * shift[i];
-}
-
-template <int D>
-Vec<D> FlowSolver<D>::concentration_gradient(Index i, bool& near_surface) const {
-  // ∇_i of C_i = n_i/n0 [1/m]. Fluid neighbours count as they are; a wall node j stands for the
-  // fluid mirrored behind the wall: the points of its lattice column at depths dx/2 and 3dx/2
-  // below the node (deeper ones are beyond h of any fluid point at the clearance d0/2). For a
-  // lattice beside a flat wall, the fluid and the mirrored columns form the full lattice, so the
-  // gradient vanishes in every layer; counting fluid only made the first layer attract points
-  // (its band held 44 % more points after the K&O dam break at L/20), counting the nodes as
-  // points pushed the second layer away.
-  const double h = support(), dx = options_.dx;
-  const Vec<D>& xi = points_.position[i];
-  Vec<D> grad = Vec<D>::Zero();
-  auto add = [&](const Vec<D>& xj, double weight = 1.0) {
-    const Vec<D> r = xi - xj;
-    const double d = r.norm();
-    if (d > 0.0 && d < h) grad += (weight * wendland_c2_derivative(d / h) / (h * d)) * r;
-  };
-  for (Index j : neighbours_.of(i)) {
-    const Vec<D>& xj = points_.position[j];
-    if (is_fluid(points_, j)) {
-      add(xj);
-      near_surface = near_surface || points_.type[j] == PointType::surface ||
-                     points_.type[j] == PointType::isolated;
-      continue;
-    }
-    const Vec<D>& n = points_.wall_normal[j];
-    if (n.dot(xi - xj) <= 0.0) continue;  // the node faces away (the far side of a thin wall)
-    // A node sampled finer than dx stands for that share of a lattice column.
-    add(xj - 0.5 * dx * n, ops_.weight_of(j));
-    add(xj - 1.5 * dx * n, ops_.weight_of(j));
-  }
-  return grad / n0_;
+  });
 }
 
 template <int D>
@@ -626,34 +542,27 @@ void FlowSolver<D>::shift_down_concentration_gradient(double dt, std::vector<Vec
   // after the impact: RMS deviation from its 5 ms running mean 0.47 → 0.17 ρgH, 13 → 0 of 159
   // samples below 0.2 ρgH.
   const auto& o = options_;
-  const Index n = points_.size();
-  const double max_shift = o.pbd_clamp * o.dx;
-  std::vector<Vec<D>> shift(static_cast<std::size_t>(n), Vec<D>::Zero());
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    if (!is_fluid(points_, i) || points_.type[i] == PointType::isolated) continue;
-    bool near_surface = points_.type[i] == PointType::surface;
-    const Vec<D> grad = concentration_gradient(i, near_surface);
-    if (near_surface) continue;
-    Vec<D> delta = -(o.shifting * o.dx * points_.velocity[i].norm() * dt) * grad;
-    const double length = delta.norm();
-    if (length > max_shift) delta *= max_shift / length;
-    shift[i] = delta;
-  }
+  const kernels::ShiftParameters shifting{.coefficient = o.shifting,
+                                          .dx = o.dx,
+                                          .dt = dt,
+                                          .max_shift = o.pbd_clamp * o.dx,
+                                          .h = support(),
+                                          .n0 = n0_};
+  std::vector<Vec<D>> shift(static_cast<std::size_t>(points_.size()), Vec<D>::Zero());
+  for_each_point(owned(),
+                 [&](Index i) { shift[i] = kernels::fickian_shift(cloud(), i, shifting); });
   move_points(shift, total);
 }
 
 template <int D>
 void FlowSolver<D>::move_points(std::span<const Vec<D>> shift, std::vector<Vec<D>>& total) {
   // Fluid points move by `shift` (added to `total`), then keep clear of the walls.
-  const Index n = points_.size();
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    if (!is_fluid(points_, i)) continue;
+  for_each_point(owned(), [&](Index i) {
+    if (!is_fluid(points_, i)) return;
     points_.position[i] += shift[i];
     total[i] += shift[i];
     wall_distance_[i] -= shift[i].norm();
-  }
+  });
   keep_clear_of_walls(false);
 }
 
@@ -697,20 +606,11 @@ void FlowSolver<D>::mark_sparse_points_as_surface() {
   const double total_limit = options_.sparse_density * n0_;
   const double fluid_limit = 0.5 * total_limit;
   const double h = support();
-  const Index n = points_.size();
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    if (!is_fluid(points_, i) || points_.type[i] != PointType::interior) continue;
-    bool sparse = ops_.number_density[i] < total_limit;
-    if (!sparse) {
-      double fluid_density = 0.0;
-      for (Index j : neighbours_.of(i))
-        if (is_fluid(points_, j))
-          fluid_density += wendland_c2((points_.position[j] - points_.position[i]).norm() / h);
-      sparse = fluid_density < fluid_limit;
-    }
-    if (sparse) points_.type[i] = PointType::surface;
-  }
+  for_each_point(owned(), [&](Index i) {
+    if (!is_fluid(points_, i) || points_.type[i] != PointType::interior) return;
+    if (kernels::is_sparse(cloud(), i, total_limit, fluid_limit, h))
+      points_.type[i] = PointType::surface;
+  });
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -721,30 +621,16 @@ std::vector<Vec<D>> FlowSolver<D>::predict(double dt, std::vector<Vec<D>>& visco
   const auto& o = options_;
   const Index n = points_.size();
   // Wall nodes carry the wall velocity (no-slip in the viscous term).
-  const auto& u = points_.velocity;
+  const std::span<const Vec<D>> u(points_.velocity);
   viscous.assign(static_cast<std::size_t>(n), Vec<D>::Zero());
-  if (o.viscosity > 0.0) {
-#pragma omp parallel for schedule(static)
-    for (Index i = 0; i < n; ++i) {
-      if (points_.type[i] == PointType::inactive || ops_.isolated(i)) continue;
-      Vec<D> sum = Vec<D>::Zero();
-      for (auto k = neighbours_.offsets[i]; k < neighbours_.offsets[i + 1]; ++k)
-        sum += ops_.laplacian[k] * (u[neighbours_.indices[k]] - u[i]);
-      viscous[i] = o.viscosity * sum;
-    }
-  }
+  if (o.viscosity > 0.0)
+    for_each_point(owned(), [&](Index i) {
+      viscous[i] = kernels::viscous_acceleration(cloud(), i, u, o.viscosity);
+    });
   std::vector<Vec<D>> predicted(static_cast<std::size_t>(n));
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    if (is_fluid(points_, i)) {
-      const bool ballistic = points_.type[i] == PointType::isolated;
-      predicted[i] = u[i] + dt * (o.gravity + (ballistic ? Vec<D>::Zero() : viscous[i]));
-    } else {
-      // u*_b = U^n + Δt(g + ν∇²u): the velocity the Neumann row assumes (§0.2 item 5, D1).
-      predicted[i] =
-          points_.wall_velocity[i] + dt * (o.gravity + viscous[i] - points_.wall_acceleration[i]);
-    }
-  }
+  for_each_point(owned(), [&](Index i) {
+    predicted[i] = kernels::predicted_velocity(cloud(), i, dt, o.gravity, viscous[i]);
+  });
   if (o.viscous == ViscousScheme::implicit_euler && o.viscosity > 0.0)
     solve_implicit_viscosity(dt, predicted, viscous);
   return predicted;
@@ -865,44 +751,21 @@ bool FlowSolver<D>::releases_tension(Index i) const {
 
 template <int D>
 void FlowSolver<D>::set_surface_pressure(std::vector<double>& dirichlet) const {
-  // A surface point stands for a cell of size dx: the free surface lies dx/2 beyond it along the
-  // outward normal ν (spec §5 item 7). p = 0 there gives p_i = −ρ (g·ν) dx/2 at the point (the
-  // hydrostatic part; never negative: a surface point is not in tension).
-  const Index n = points_.size();
-  const double h = support(), half = 0.5 * options_.dx;
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    if (!is_fluid(points_, i) || points_.type[i] != PointType::surface) continue;
-    Vec<D> offset = Vec<D>::Zero();
-    for (Index j : neighbours_.of(i)) {
-      if (!is_fluid(points_, j)) continue;
-      const Vec<D> r = points_.position[j] - points_.position[i];
-      offset += wendland_c2(r.norm() / h) * r;
-    }
-    const double length = offset.norm();
-    if (length <= 0.0) continue;
-    const Vec<D> outward = -offset / length;
-    dirichlet[i] = std::max(0.0, -options_.density * options_.gravity.dot(outward) * half);
-  }
+  const auto& o = options_;
+  for_each_point(owned(), [&](Index i) {
+    if (!is_fluid(points_, i) || points_.type[i] != PointType::surface) return;
+    if (const auto p = kernels::surface_pressure(cloud(), i, support(), o.dx, o.density, o.gravity))
+      dirichlet[i] = *p;
+  });
 }
 
 template <int D>
 void FlowSolver<D>::correct(double dt, std::span<const Vec<D>> predicted) {
   const auto grad_p = gradient<D>(points_.position, neighbours_, ops_, points_.pressure);
   const double scale = dt / options_.density;
-  const Index n = points_.size();
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    if (!is_fluid(points_, i)) {
-      points_.velocity[i] = points_.wall_velocity[i];
-      continue;
-    }
-    if (points_.type[i] == PointType::isolated || ops_.isolated(i)) {
-      points_.velocity[i] = predicted[i];  // ballistic
-      continue;
-    }
-    points_.velocity[i] = predicted[i] - scale * grad_p[i];
-  }
+  for_each_point(owned(), [&](Index i) {
+    points_.velocity[i] = kernels::corrected_velocity(cloud(), i, predicted[i], grad_p[i], scale);
+  });
 }
 
 template <int D>
@@ -915,22 +778,11 @@ void FlowSolver<D>::smooth_velocity(double dt, double stable_step) {
   // slip_velocity_gradient); the stable step keeps the smoothing per CFL step as it was.
   const double eps = options_.smoothing * std::min(1.0, dt / stable_step);
   if (eps <= 0.0) return;
-  const Index n = points_.size();
-  const double h = support();
   std::vector<Vec<D>> smoothed(points_.velocity);
-#pragma omp parallel for schedule(static)
-  for (Index i = 0; i < n; ++i) {
-    if (!is_fluid(points_, i) || points_.type[i] == PointType::isolated) continue;
-    double weight = 0.0;
-    Vec<D> sum = Vec<D>::Zero();
-    for (Index j : neighbours_.of(i)) {
-      if (!is_fluid(points_, j)) continue;  // no friction from the walls
-      const double w = wendland_c2((points_.position[j] - points_.position[i]).norm() / h);
-      weight += w;
-      sum += w * (points_.velocity[j] - points_.velocity[i]);
-    }
-    if (weight > 0.0) smoothed[i] += (eps / weight) * sum;
-  }
+  for_each_point(owned(), [&](Index i) {
+    if (const auto change = kernels::smoothing_change(cloud(), i, eps, support()))
+      smoothed[i] += *change;
+  });
   points_.velocity.swap(smoothed);
 }
 
@@ -952,40 +804,48 @@ double FlowSolver<D>::volume_drift() const {
 template <int D>
 void FlowSolver<D>::update_monitors(double dt, std::span<const Vec<D>> old_velocity,
                                     StepMonitor& m) {
-  const Index n = points_.size();
   const auto grad = slip_velocity_gradient<D>(points_, neighbours_, ops_, points_.velocity);
-  double max_div = 0.0, max_speed = 0.0;
-  Index fluid = 0, surface = 0, isolated = 0, active = 0;
-#pragma omp parallel for schedule(static) reduction(max : max_div, max_speed) \
-    reduction(+ : fluid, surface, isolated, active)
-  for (Index i = 0; i < n; ++i) {
+  struct Totals {
+    double max_divergence = 0.0, max_speed = 0.0;  // [1/s], [m/s]
+    Index fluid = 0, surface = 0, isolated = 0, active_wall_nodes = 0;
+    void merge(const Totals& o) {
+      max_divergence = std::max(max_divergence, o.max_divergence);
+      max_speed = std::max(max_speed, o.max_speed);
+      fluid += o.fluid;
+      surface += o.surface;
+      isolated += o.isolated;
+      active_wall_nodes += o.active_wall_nodes;
+    }
+  };
+  const auto totals = reduce_points(owned(), Totals{}, [&](Index i, Totals& t) {
     const auto type = points_.type[i];
     if (!is_fluid(points_, i)) {
-      if (type != PointType::inactive) ++active;
+      if (type != PointType::inactive) ++t.active_wall_nodes;
       grad_u_[i].setZero();
-      continue;
+      return;
     }
-    ++fluid;
-    surface += type == PointType::surface;
-    isolated += type == PointType::isolated;
+    ++t.fluid;
+    t.surface += type == PointType::surface;
+    t.isolated += type == PointType::isolated;
     acceleration_[i] = (points_.velocity[i] - old_velocity[i]).norm() / dt;
-    max_speed = std::max(max_speed, points_.velocity[i].norm());
+    t.max_speed = std::max(t.max_speed, points_.velocity[i].norm());
     grad_u_[i] = grad[i];
-    if (type == PointType::interior) max_div = std::max(max_div, std::abs(grad[i].trace()));
-  }
-  m.max_divergence = max_div;
-  m.max_speed = max_speed;
-  m.fluid = fluid;
-  m.surface = surface;
-  m.isolated = isolated;
-  m.wall_active = active;
+    if (type == PointType::interior)
+      t.max_divergence = std::max(t.max_divergence, std::abs(grad[i].trace()));
+  });
+  m.max_divergence = totals.max_divergence;
+  m.max_speed = totals.max_speed;
+  m.fluid = totals.fluid;
+  m.surface = totals.surface;
+  m.isolated = totals.isolated;
+  m.wall_active = totals.active_wall_nodes;
   m.escaped = escaped_;
   // The volume costs about a neighbour search (a grid of dx/2 over the fluid): every
   // volume_interval steps, the last value in between.
   if (step_ % volume_interval == 1 || volume_interval == 1 || last_volume_drift_ == 0.0)
     last_volume_drift_ = volume_drift();
   m.volume_drift = last_volume_drift_;
-  last_max_speed_ = max_speed;
+  last_max_speed_ = totals.max_speed;
 }
 
 template <int D>

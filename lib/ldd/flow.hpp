@@ -30,6 +30,9 @@
 //      u_i += ε' Σ_j (W_ij/Σ_k W_ik)(u_j − u_i) — walls exert no friction through it; ε' =
 //      ε·min(1, Δt/Δt_stable), so a step cut short for an output time smooths less;
 //  12. monitors: ∇·u after the step, volume from the number density, escaped points.
+// What each item does at one point is a kernel of ldd/kernels.hpp (or of the operator, free-
+// surface and PPE modules), run over the points by the driver of ldd/point_loop.hpp; this class
+// holds the state and the order of the items.
 // SI units: m, s, kg/m³, Pa (gauge), m²/s.
 #include <array>
 #include <functional>
@@ -39,6 +42,7 @@
 
 #include "core/errors.hpp"
 #include "ldd/free_surface.hpp"
+#include "ldd/kernels.hpp"
 #include "ldd/ppe.hpp"
 #include "ldd/walls.hpp"
 
@@ -255,11 +259,14 @@ class FlowSolver {
 
  private:
   void advect(double dt);
+  /// The points this process computes, [0, owned()) (ldd/point_loop.hpp): all of them, a run
+  /// being one process.
+  Index owned() const { return points_.size(); }
+  /// What the per-point kernels read (ldd/kernels.hpp).
+  kernels::Cloud<D> cloud() const { return {points_, neighbours_, ops_}; }
   void keep_clear_of_walls(bool all_points);
-  bool came_through(const WallMesh<D>& wall, Index i) const;
   void regularise_positions(double dt);
   void shift_down_concentration_gradient(double dt, std::vector<Vec<D>>& total);
-  Vec<D> concentration_gradient(Index i, bool& near_surface) const;
   void transport_velocity(std::span<const Vec<D>> shift);
   void move_points(std::span<const Vec<D>> shift, std::vector<Vec<D>>& total);
   double typical_step() const;
