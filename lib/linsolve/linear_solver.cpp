@@ -172,9 +172,11 @@ std::unique_ptr<LinearSolver> make_solver(Method method, const Settings& setting
   return nullptr;
 }
 
-CsrMatrix amg_matrix(const CsrMatrix& a, double drop) {
+CsrMatrix amg_matrix(const CsrMatrix& a, double drop, int first_row) {
   HM_ASSERT(drop >= 0.0 && drop < 1.0, "amg_matrix: drop {} outside [0, 1)", drop);
-  HM_ASSERT(a.isCompressed() && a.rows() == a.cols(), "amg_matrix: a square compressed matrix");
+  HM_ASSERT(a.isCompressed() && first_row >= 0 && first_row + a.rows() <= a.cols(),
+            "amg_matrix: rows {}.. {} of a compressed matrix with {} columns", first_row,
+            first_row + a.rows(), a.cols());
   if (drop == 0.0) return a;
   // Built row by row straight into compressed storage (a's columns are sorted in each row):
   // the setup of every PPE pays for this, so no triplets and no sort.
@@ -183,22 +185,23 @@ CsrMatrix amg_matrix(const CsrMatrix& a, double drop) {
   columns.reserve(static_cast<std::size_t>(a.nonZeros()));
   values.reserve(static_cast<std::size_t>(a.nonZeros()));
   for (int r = 0; r < a.rows(); ++r) {
+    const int d = first_row + r;  // the diagonal's column
     double largest = 0.0, lumped = 0.0;
     for (CsrMatrix::InnerIterator it(a, r); it; ++it)
-      if (it.col() != r) largest = std::max(largest, std::abs(it.value()));
+      if (it.col() != d) largest = std::max(largest, std::abs(it.value()));
     std::size_t diagonal = values.size();  // where the diagonal goes if the row has none
     bool has_diagonal = false;
     for (CsrMatrix::InnerIterator it(a, r); it; ++it) {
-      const bool small = it.col() != r && std::abs(it.value()) < drop * largest;
+      const bool small = it.col() != d && std::abs(it.value()) < drop * largest;
       if (small) {
         lumped += it.value();  // onto the diagonal: the row sum stays
         continue;
       }
-      if (!has_diagonal && it.col() >= r) {
+      if (!has_diagonal && it.col() >= d) {
         has_diagonal = true;
         diagonal = values.size();
-        if (it.col() > r) {  // a row without a stored diagonal: a zero one, lumped into
-          columns.push_back(r);
+        if (it.col() > d) {  // a row without a stored diagonal: a zero one, lumped into
+          columns.push_back(d);
           values.push_back(0.0);
         }
       }
@@ -207,7 +210,7 @@ CsrMatrix amg_matrix(const CsrMatrix& a, double drop) {
     }
     if (!has_diagonal) {
       diagonal = values.size();
-      columns.push_back(r);
+      columns.push_back(d);
       values.push_back(0.0);
     }
     values[diagonal] += lumped;

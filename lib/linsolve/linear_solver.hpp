@@ -87,8 +87,10 @@ std::unique_ptr<LinearSolver> make_solver(Method method, const Settings& setting
 /// entries added to its diagonal, so that every row sum — and with it the constant vector, the
 /// Laplacian's near null space — is kept. The LDD Laplacian couples a point to every neighbour
 /// within the kernel's support, most of them with tiny weights: at drop = 0.05 a 3-D row keeps
-/// 25 of its 75 entries, a 2-D row 9 of 21 (bench_ppe, the dam break's PPE).
-CsrMatrix amg_matrix(const CsrMatrix& a, double drop);
+/// 25 of its 75 entries, a 2-D row 9 of 21 (bench_ppe, the dam break's PPE). `a` may be the
+/// rows first_row.. of a larger square matrix (one process's share): then row r's diagonal is
+/// in column first_row + r.
+CsrMatrix amg_matrix(const CsrMatrix& a, double drop, int first_row = 0);
 
 /// ‖b − Ax‖/‖b‖ recomputed from the matrix, independently of any solver (0 when b = 0).
 double relative_residual(const CsrMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x);

@@ -3,12 +3,14 @@
 #ifdef HM_WITH_PETSC
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <mutex>
 #include <stdexcept>
 #include <string>
 
 #include <fmt/format.h>
+#include <mpi.h>
 #include <petscksp.h>
 
 #include "core/errors.hpp"
@@ -67,11 +69,16 @@ std::string next_prefix() {
 }
 
 /// KSP BiCGSTAB with right preconditioning, so that the residual it tests is the true
-/// ‖b − Ax‖ (as the native solvers do), relative to ‖b‖.
+/// ‖b − Ax‖ (as the native solvers do), relative to ‖b‖. In one process (PETSC_COMM_SELF) or
+/// over all of them (`distributed`: PETSC_COMM_WORLD, each process holding a block of rows in
+/// rank order; every call is then collective, and every decision that could differ between
+/// processes — a zero right-hand side, a non-finite answer, a changed size — is agreed first).
 class PetscSolver final : public LinearSolver {
  public:
-  PetscSolver(Method method, const Settings& s) : method_(method), settings_(s) {
+  PetscSolver(Method method, const Settings& s, bool distributed)
+      : method_(method), settings_(s), distributed_(distributed) {
     ensure_petsc();
+    comm_ = distributed ? PETSC_COMM_WORLD : PETSC_COMM_SELF;
     prefix_ = next_prefix();
   }
   ~PetscSolver() override { release(); }
@@ -82,7 +89,8 @@ class PetscSolver final : public LinearSolver {
     setup_failure_.clear();
     try {
       release();
-      check(KSPCreate(PETSC_COMM_SELF, &ksp_), "KSPCreate");
+      set_partition(a);
+      check(KSPCreate(comm_, &ksp_), "KSPCreate");
       check(KSPSetOptionsPrefix(ksp_, prefix_.c_str()), "KSPSetOptionsPrefix");
       check(KSPSetType(ksp_, KSPBCGS), "KSPSetType");
       check(KSPSetPCSide(ksp_, PC_RIGHT), "KSPSetPCSide");
@@ -107,7 +115,7 @@ class PetscSolver final : public LinearSolver {
   }
 
   bool reuse_for(const CsrMatrix& a) override {
-    if (ksp_ == nullptr || a.rows() != rows_) return false;
+    if (!all_agree(ksp_ != nullptr && a.rows() == rows_ && a.cols() == columns_)) return false;
     const auto start = Clock::now();
     try {
       PC pc = nullptr;
@@ -130,7 +138,8 @@ class PetscSolver final : public LinearSolver {
       s.failure = setup_failure_.empty() ? "solve before setup" : setup_failure_;
       return s;
     }
-    if (b.squaredNorm() == 0.0) {  // the native solvers' convention: x = 0, converged
+    const double norm_b = std::sqrt(sum_over_processes(b.squaredNorm()));
+    if (norm_b == 0.0) {  // the native solvers' convention: x = 0, converged
       x.setZero();
       s.converged = true;
       return s;
@@ -138,8 +147,8 @@ class PetscSolver final : public LinearSolver {
     try {
       Vec pb = nullptr, px = nullptr;
       const auto n = static_cast<PetscInt>(b.size());
-      check(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, b.data(), &pb), "VecCreateSeqWithArray");
-      check(VecCreateSeqWithArray(PETSC_COMM_SELF, 1, n, x.data(), &px), "VecCreateSeqWithArray");
+      check(VecCreateMPIWithArray(comm_, 1, n, columns_, b.data(), &pb), "VecCreateMPIWithArray");
+      check(VecCreateMPIWithArray(comm_, 1, n, columns_, x.data(), &px), "VecCreateMPIWithArray");
       const PetscErrorCode code = KSPSolve(ksp_, pb, px);
       VecDestroy(&pb);
       VecDestroy(&px);
@@ -151,8 +160,8 @@ class PetscSolver final : public LinearSolver {
       check(KSPGetResidualNorm(ksp_, &norm), "KSPGetResidualNorm");
       check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
       s.iterations = static_cast<int>(iterations);
-      s.residual = norm / b.norm();
-      s.converged = reason > 0 && x.allFinite();
+      s.residual = norm / norm_b;
+      s.converged = all_agree(reason > 0 && x.allFinite());
       if (!s.converged) {
         const char* why = nullptr;
         KSPGetConvergedReasonString(ksp_, &why);
@@ -209,12 +218,58 @@ class PetscSolver final : public LinearSolver {
     check(PCSetFromOptions(pc), "PCSetFromOptions");
   }
 
-  /// `a` as a PETSc AIJ matrix (columns sorted row by row).
-  static Mat petsc_matrix(const CsrMatrix& a) {
-    HM_ASSERT(a.isCompressed() && a.rows() == a.cols(), "petsc: a square compressed matrix");
+  /// The processes' sum of `value` (the value itself in one process).
+  double sum_over_processes(double value) const {
+    double sum = value;
+    if (distributed_) MPI_Allreduce(&value, &sum, 1, MPI_DOUBLE, MPI_SUM, comm_);
+    return sum;
+  }
+  /// Whether `condition` holds on every process.
+  bool all_agree(bool condition) const {
+    int all = condition ? 1 : 0;
+    if (distributed_) {
+      const int mine = all;
+      MPI_Allreduce(&mine, &all, 1, MPI_INT, MPI_LAND, comm_);
+    }
+    return all != 0;
+  }
+
+  /// This process's rows of the global matrix: a's rows, after those of the lower ranks; a's
+  /// columns are the global ones. PetscFailure unless the processes' rows add up to them.
+  void set_partition(const CsrMatrix& a) {
+    HM_ASSERT(a.isCompressed(), "petsc: a compressed matrix");
+    rows_ = a.rows();
+    columns_ = a.cols();
+    first_row_ = 0;
+    if (!distributed_) {
+      if (rows_ != columns_)
+        throw PetscFailure(fmt::format("a {} × {} matrix is not square", rows_, columns_));
+      return;
+    }
+    long mine = static_cast<long>(rows_), before = 0, total = 0;
+    MPI_Exscan(&mine, &before, 1, MPI_LONG, MPI_SUM, comm_);
+    MPI_Allreduce(&mine, &total, 1, MPI_LONG, MPI_SUM, comm_);
+    int rank = 0;
+    MPI_Comm_rank(comm_, &rank);
+    first_row_ = rank == 0 ? 0 : static_cast<Eigen::Index>(before);
+    if (!all_agree(total == static_cast<long>(columns_)))
+      throw PetscFailure(fmt::format(
+          "the processes' rows add up to {} for a matrix of {} columns (every process must "
+          "give its block of rows of the one square matrix)",
+          total, columns_));
+  }
+
+  /// `a` (this process's rows; columns sorted row by row) as a PETSc AIJ matrix.
+  Mat petsc_matrix(const CsrMatrix& a) const {
     Mat m = nullptr;
-    const auto n = static_cast<PetscInt>(a.rows());
-    check(MatCreate(PETSC_COMM_SELF, &m), "MatCreate");
+    const auto n = static_cast<PetscInt>(a.rows()), global = static_cast<PetscInt>(columns_);
+    if (distributed_) {
+      check(MatCreateMPIAIJWithArrays(comm_, n, n, global, global, a.outerIndexPtr(),
+                                      a.innerIndexPtr(), a.valuePtr(), &m),
+            "MatCreateMPIAIJWithArrays");
+      return m;
+    }
+    check(MatCreate(comm_, &m), "MatCreate");
     check(MatSetSizes(m, n, n, n, n), "MatSetSizes");
     check(MatSetType(m, MATSEQAIJ), "MatSetType");
     check(MatSeqAIJSetPreallocationCSR(m, a.outerIndexPtr(), a.innerIndexPtr(), a.valuePtr()),
@@ -227,11 +282,11 @@ class PetscSolver final : public LinearSolver {
   void set_operators(const CsrMatrix& a, bool with_preconditioner_matrix) {
     if (matrix_ != nullptr) MatDestroy(&matrix_);
     matrix_ = petsc_matrix(a);
-    rows_ = a.rows();
     if (with_preconditioner_matrix) {
       if (preconditioner_matrix_ != nullptr) MatDestroy(&preconditioner_matrix_);
       if (settings_.amg_drop > 0.0)
-        preconditioner_matrix_ = petsc_matrix(amg_matrix(a, settings_.amg_drop));
+        preconditioner_matrix_ =
+            petsc_matrix(amg_matrix(a, settings_.amg_drop, static_cast<int>(first_row_)));
     }
     check(KSPSetOperators(ksp_, matrix_,
                           preconditioner_matrix_ != nullptr ? preconditioner_matrix_ : matrix_),
@@ -246,15 +301,20 @@ class PetscSolver final : public LinearSolver {
     matrix_ = nullptr;
     preconditioner_matrix_ = nullptr;
     rows_ = -1;
+    columns_ = -1;
   }
 
   Method method_;
   Settings settings_;
+  bool distributed_ = false;
+  MPI_Comm comm_ = MPI_COMM_NULL;
   std::string prefix_;
   KSP ksp_ = nullptr;
   Mat matrix_ = nullptr;
   Mat preconditioner_matrix_ = nullptr;  ///< amg_matrix of the last setup's; null at amg_drop 0
-  Eigen::Index rows_ = -1;
+  Eigen::Index rows_ = -1;               ///< this process's rows of the last matrix
+  Eigen::Index columns_ = -1;            ///< the global matrix's rows and columns
+  Eigen::Index first_row_ = 0;
 };
 
 }  // namespace
@@ -264,7 +324,21 @@ bool petsc_available() {
 }
 
 std::unique_ptr<LinearSolver> make_petsc_solver(Method method, const Settings& settings) {
-  return std::make_unique<PetscSolver>(method, settings);
+  return std::make_unique<PetscSolver>(method, settings, /*distributed=*/false);
+}
+
+std::unique_ptr<LinearSolver> make_distributed_solver(Method method, const Settings& settings) {
+  HM_ASSERT(method == Method::boomeramg || method == Method::gamg,
+            "a distributed solver is boomeramg or gamg, not {}", to_string(method));
+  return std::make_unique<PetscSolver>(method, settings, /*distributed=*/true);
+}
+
+Processes processes() {
+  ensure_petsc();
+  Processes p;
+  MPI_Comm_rank(PETSC_COMM_WORLD, &p.rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &p.count);
+  return p;
 }
 
 }  // namespace hm::linsolve
@@ -279,6 +353,14 @@ bool petsc_available() {
 
 std::unique_ptr<LinearSolver> make_petsc_solver(Method, const Settings&) {
   return nullptr;
+}
+
+std::unique_ptr<LinearSolver> make_distributed_solver(Method, const Settings&) {
+  return nullptr;
+}
+
+Processes processes() {
+  return {};
 }
 
 }  // namespace hm::linsolve

@@ -13,4 +13,17 @@ namespace hm::linsolve {
 bool petsc_available();
 std::unique_ptr<LinearSolver> make_petsc_solver(Method method, const Settings& settings);
 
+/// A solver (boomeramg or gamg) over all the processes of the run (MPI_COMM_WORLD; one process
+/// when not started by mpirun): each process gives setup() its block of rows of the one square
+/// matrix — the blocks in rank order, the columns global — and solve() its entries of b and x.
+/// Every call is collective. Null in a build without PETSc.
+std::unique_ptr<LinearSolver> make_distributed_solver(Method method, const Settings& settings);
+
+struct Processes {
+  int rank = 0;   ///< this process's
+  int count = 1;  ///< in the run
+};
+/// This process's rank and the run's process count (initialises PETSc, and MPI with it).
+Processes processes();
+
 }  // namespace hm::linsolve

@@ -184,6 +184,17 @@ TEST(LinearSolver, AmgMatrixDropsSmallEntriesAndKeepsRowSums) {
   EXPECT_EQ(amg_matrix(a, 0.0).nonZeros(), a.nonZeros());
 }
 
+// One process's block of rows (columns global) gives that block of the whole matrix's.
+TEST(LinearSolver, AmgMatrixOfABlockOfRowsIsThatBlockOfTheWholeOnes) {
+  const CsrMatrix a = wide_kernel_laplacian(20);
+  const CsrMatrix whole = amg_matrix(a, 0.05);
+  const int first = 137, rows = 90;
+  const CsrMatrix block = amg_matrix(CsrMatrix(a.middleRows(first, rows)), 0.05, first);
+  ASSERT_EQ(block.rows(), rows);
+  ASSERT_EQ(block.cols(), a.cols());
+  EXPECT_EQ(Eigen::MatrixXd(block), Eigen::MatrixXd(whole.middleRows(first, rows)));
+}
+
 // The hierarchy built on the sparser matrix preconditions the whole one about as well: the
 // Krylov iteration solves A itself, so the true residual meets the tolerance either way.
 TEST(LinearSolver, AlgebraicMultigridOnTheDroppedMatrixSolvesTheWholeOne) {

@@ -21,50 +21,15 @@
 #include <memory>
 #include <string>
 
-#include "flow_cases.hpp"
 #include "linsolve/linear_solver.hpp"
+#include "ppe_cases.hpp"
 
 namespace hm::ldd {
 namespace {
 
-template <int D>
-FlowSolver<D> dam_break(double dx, Preconditioner preconditioner, linsolve::ReusePolicy reuse) {
-  Vec<D> size, column;
-  size[0] = 1.2;
-  column[0] = 0.6;
-  if constexpr (D == 3) {
-    size[1] = 0.15;
-    column[1] = 0.15;
-  }
-  size[D - 1] = 0.6;
-  column[D - 1] = 0.3;
-  const Box<D> fluid{Vec<D>::Zero(), column};
-  std::vector<std::string> faces =
-      D == 2 ? std::vector<std::string>{"xmin", "xmax", "ymin"}
-             : std::vector<std::string>{"xmin", "xmax", "ymin", "ymax", "zmin"};
-  std::vector<WallMesh<D>> walls;
-  walls.push_back(test::box_tank<D>(size, 4 * dx, faces));
-  FlowOptions<D> o;
-  o.dx = dx;
-  o.gravity[D - 1] = -9.81;
-  o.ppe.preconditioner = preconditioner;
-  o.ppe.reuse = reuse;
-  auto x = seed_box<D>(fluid, dx, walls);
-  return FlowSolver<D>(std::move(walls), x, {}, o);
-}
-
-/// A PPE system of a real run and the pressure the run warm-started it from.
-struct Captured {
-  linsolve::CsrMatrix matrix;
-  Eigen::VectorXd rhs, warm_start;
-  Index points = 0;
-};
-
-/// Fluid points of the column: 0.18 m² / dx² (2-D), 0.027 m³ / dx³ (3-D).
-template <int D>
-double spacing_for(double points) {
-  return D == 2 ? std::sqrt(0.18 / points) : std::cbrt(0.027 / points);
-}
+using test::CapturedPpe;
+using test::dam_break;
+using test::spacing_for;
 
 constexpr double kSizes2D[] = {1e4, 4e4, 1.6e5, 6.4e5, 1e6};
 constexpr double kSizes3D[] = {2.7e4, 1.25e5, 5e5};
@@ -89,26 +54,12 @@ void write_matrix_market(const std::string& path, const linsolve::CsrMatrix& a,
 }
 
 template <int D>
-const Captured& captured(int size_index) {
-  static std::map<int, std::unique_ptr<Captured>> cache;
+const CapturedPpe& captured(int size_index) {
+  static std::map<int, std::unique_ptr<CapturedPpe>> cache;
   auto& c = cache[size_index];
   if (c) return *c;
-  c = std::make_unique<Captured>();
   const double points = D == 2 ? kSizes2D[size_index] : kSizes3D[size_index];
-  // The run itself on BoomerAMG where PETSc is built in (the fastest way to the state).
-  const auto pre = linsolve::is_available(linsolve::Method::boomeramg) ? Preconditioner::boomeramg
-                                                                       : Preconditioner::automatic;
-  auto flow = dam_break<D>(spacing_for<D>(points), pre, {});
-  Captured* out = c.get();
-  flow.observe_ppe([out](const PoissonSystem& s, std::span<const double> warm, const SolveReport&) {
-    out->matrix = s.matrix;
-    out->rhs = s.rhs;
-    out->warm_start.resize(static_cast<Eigen::Index>(s.point_of.size()));
-    for (std::size_t r = 0; r < s.point_of.size(); ++r)
-      out->warm_start[static_cast<Eigen::Index>(r)] = warm[static_cast<std::size_t>(s.point_of[r])];
-  });
-  for (int s = 0; s < 3; ++s) flow.step(flow.stable_dt(0.0).first);
-  c->points = flow.points().size();
+  c = std::make_unique<CapturedPpe>(test::capture_ppe<D>(spacing_for<D>(points)));
   if (const char* dir = std::getenv("HM_PPE_DUMP"))  // for experiments with other tools
     write_matrix_market(fmt::format("{}/ppe_{}d_{}.mtx", dir, D, size_index), c->matrix, c->rhs);
   return *c;
@@ -124,7 +75,7 @@ void BM_PpeSolve(benchmark::State& state) {
     state.SkipWithError("not built in");
     return;
   }
-  const Captured& c = captured<D>(static_cast<int>(state.range(0)));
+  const CapturedPpe& c = captured<D>(static_cast<int>(state.range(0)));
   const linsolve::Settings settings{.tolerance = 1e-6,
                                     .max_iterations = 20000,
                                     .amg_drop = 0.01 * static_cast<double>(state.range(2))};
