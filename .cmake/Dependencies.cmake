@@ -117,3 +117,18 @@ if(HM_PETSC)
                    "only the jacobi and ilu solvers are built")
   endif()
 endif()
+
+# Zoltan 13.2 (libtrilinos-zoltan-dev, already a dependency of petsc-dev): the decomposition of
+# the points over MPI processes (lib/parallel: recursive coordinate bisection, point and box
+# assignment for migration and ghosts). Built with PETSc's MPI; without either, no lib/parallel.
+set(HM_WITH_ZOLTAN FALSE)
+if(HM_WITH_PETSC)
+  find_package(Zoltan CONFIG QUIET PATHS /usr/lib/${CMAKE_LIBRARY_ARCHITECTURE}/cmake/Zoltan)
+  if(Zoltan_FOUND AND TARGET trilinos_zoltan)
+    set(HM_WITH_ZOLTAN TRUE)
+    message(STATUS "hydromodal: Zoltan found: the point decomposition (lib/parallel) is built")
+  else()
+    message(STATUS "hydromodal: Zoltan not found (Debian: libtrilinos-zoltan-dev): "
+                   "no point decomposition")
+  endif()
+endif()

@@ -7,14 +7,24 @@
 // setup and solve seconds (the slowest process's), iterations from a cold start and from the
 // run's warm start, and the residual recomputed from the whole matrix.
 //   BM_DistributedPpe/<D>/<points>   2-D 40 k and 160 k, 3-D 27 k and 125 k fluid points
+// And the points' decomposition (parallel::Decomposition, Zoltan RCB) of a jittered lattice
+// column, then 20 steps of every point moving up to 0.2 dx: per step, the seconds of migration
+// and of the ghost exchange within h = 2.1 dx, the points migrated, the ghost points and halo
+// bytes the largest process receives (id, position and 3 fields a point), against its owned
+// points.
+//   BM_Decomposition/<D>/<points>    3-D 200 k and 1 M points
 #include <benchmark/benchmark.h>
 #include <mpi.h>
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
 #include <map>
 #include <memory>
 
+#include "dealt_points.hpp"
 #include "linsolve/petsc_solver.hpp"
+#include "parallel/decomposition.hpp"
 #include "ppe_cases.hpp"
 
 namespace hm::ldd {
@@ -83,8 +93,54 @@ void BM_DistributedPpe(benchmark::State& state) {
   state.counters["true_residual"] = residual;
 }
 
+long largest(long value) {
+  long max = value;
+  MPI_Allreduce(&value, &max, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD);
+  return max;
+}
+
+template <int D>
+void BM_Decomposition(benchmark::State& state) {
+  const auto processes = parallel::processes();
+  const double points = static_cast<double>(state.range(0));
+  const double dx = D == 2 ? std::sqrt(0.18 / points) : std::cbrt(0.027 / points);
+  constexpr int steps = 20;
+  double migrate_s = 0.0, ghosts_s = 0.0, imbalance = 0.0;
+  long migrated = 0, ghosts = 0, owned = 0;
+  for (auto _ : state) {
+    auto block = parallel::test::dealt_lattice<D>(dx, processes);
+    parallel::Decomposition<D> decomposition(block);
+    imbalance = decomposition.imbalance(block);
+    for (int step = 0; step < steps; ++step) {
+      for (std::size_t i = 0; i < block.size(); ++i)
+        block.position[i] += parallel::test::displacement<D>(block.id[i] * (step + 2), 0.2 * dx);
+      auto start = std::chrono::steady_clock::now();
+      migrated += decomposition.migrate(block).sent;
+      migrate_s += slowest(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      start = std::chrono::steady_clock::now();
+      const auto halo = decomposition.ghosts(block, 2.1 * dx);
+      ghosts_s += slowest(
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      ghosts = std::max(ghosts, largest(static_cast<long>(halo.size())));
+      owned = largest(static_cast<long>(block.size()));
+    }
+  }
+  state.counters["processes"] = processes.count;
+  state.counters["points"] = points;
+  state.counters["imbalance"] = imbalance;
+  state.counters["owned_largest"] = static_cast<double>(owned);
+  state.counters["ghosts_largest"] = static_cast<double>(ghosts);
+  state.counters["halo_bytes_largest"] =
+      static_cast<double>(ghosts) * (8.0 + 8.0 * (D + parallel::test::kWidth));
+  state.counters["migrated_per_step"] = static_cast<double>(migrated) / steps;
+  state.counters["migrate_s_per_step"] = migrate_s / steps;
+  state.counters["ghosts_s_per_step"] = ghosts_s / steps;
+}
+
 BENCHMARK(BM_DistributedPpe<2>)->Arg(40000)->Arg(160000)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_DistributedPpe<3>)->Arg(27000)->Arg(125000)->Iterations(1)->UseRealTime();
+BENCHMARK(BM_Decomposition<3>)->Arg(200000)->Arg(1000000)->Iterations(1)->UseRealTime();
 
 /// The other processes run the same benchmarks (the solves are collective) and report nothing.
 class Silent : public benchmark::BenchmarkReporter {

@@ -1,0 +1,280 @@
+#include "parallel/decomposition.hpp"
+
+#include <cstdlib>
+#include <mutex>
+#include <numeric>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <mpi.h>
+#include <zoltan.h>
+
+namespace hm::parallel {
+namespace {
+
+void finalize_mpi() {
+  int finalized = 0;
+  MPI_Finalized(&finalized);
+  if (!finalized) MPI_Finalize();
+}
+
+/// MPI (and Zoltan on it) once per process. MPI started here is finalised at exit; one that
+/// PETSc started is PETSc's to finalise.
+void ensure_started() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    int initialized = 0;
+    MPI_Initialized(&initialized);
+    if (!initialized) {
+      MPI_Init(nullptr, nullptr);
+      std::atexit(finalize_mpi);
+    }
+    float version = 0.0f;
+    if (Zoltan_Initialize(0, nullptr, &version) != ZOLTAN_OK)
+      throw std::runtime_error("Zoltan_Initialize failed");
+  });
+}
+
+void check(int code, const char* call) {
+  if (code == ZOLTAN_OK || code == ZOLTAN_WARN) return;
+  throw std::runtime_error(fmt::format("{} failed (Zoltan error {})", call, code));
+}
+
+// Zoltan's query functions: the points of a PointBlock<D> (passed as `data`), each with a
+// two-word global id (its 64-bit id) and its index as local id.
+template <int D>
+int count_points(void* data, int* error) {
+  *error = ZOLTAN_OK;
+  return static_cast<int>(static_cast<const PointBlock<D>*>(data)->size());
+}
+
+template <int D>
+void list_points(void* data, int, int, ZOLTAN_ID_PTR global, ZOLTAN_ID_PTR local, int, float*,
+                 int* error) {
+  const auto& points = *static_cast<const PointBlock<D>*>(data);
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const auto id = static_cast<std::uint64_t>(points.id[i]);
+    global[2 * i] = static_cast<ZOLTAN_ID_TYPE>(id & 0xffffffffu);
+    global[2 * i + 1] = static_cast<ZOLTAN_ID_TYPE>(id >> 32);
+    local[i] = static_cast<ZOLTAN_ID_TYPE>(i);
+  }
+  *error = ZOLTAN_OK;
+}
+
+template <int D>
+int dimension(void*, int* error) {
+  *error = ZOLTAN_OK;
+  return D;
+}
+
+template <int D>
+void coordinates(void* data, int, int, int count, ZOLTAN_ID_PTR, ZOLTAN_ID_PTR local, int,
+                 double* out, int* error) {
+  const auto& points = *static_cast<const PointBlock<D>*>(data);
+  for (int k = 0; k < count; ++k)
+    for (int a = 0; a < D; ++a) out[D * k + a] = points.position[local[k]][a];
+  *error = ZOLTAN_OK;
+}
+
+/// Sends point i to every process in destinations[i] (its own rank: kept) and returns what this
+/// process then holds: the kept points in their order, then those received, by sending rank
+/// and in the sender's order. `report` counts the points sent away and received.
+template <int D>
+PointBlock<D> exchange(const PointBlock<D>& points,
+                       const std::vector<std::vector<int>>& destinations, int rank, int count,
+                       MigrationReport& report) {
+  const int per_point = D + points.width;  // doubles
+  std::vector<int> send_points(static_cast<std::size_t>(count), 0);
+  for (const auto& to : destinations)
+    for (int p : to) ++send_points[static_cast<std::size_t>(p)];
+  send_points[static_cast<std::size_t>(rank)] = 0;
+  std::vector<int> receive_points(static_cast<std::size_t>(count), 0);
+  MPI_Alltoall(send_points.data(), 1, MPI_INT, receive_points.data(), 1, MPI_INT, MPI_COMM_WORLD);
+
+  std::vector<int> send_start(static_cast<std::size_t>(count), 0),
+      receive_start(static_cast<std::size_t>(count), 0);
+  std::exclusive_scan(send_points.begin(), send_points.end(), send_start.begin(), 0);
+  std::exclusive_scan(receive_points.begin(), receive_points.end(), receive_start.begin(), 0);
+  const int sent = std::accumulate(send_points.begin(), send_points.end(), 0);
+  const int received = std::accumulate(receive_points.begin(), receive_points.end(), 0);
+
+  PointBlock<D> out;
+  out.width = points.width;
+  std::vector<double> send_values(static_cast<std::size_t>(sent) * per_point);
+  std::vector<std::int64_t> send_ids(static_cast<std::size_t>(sent));
+  std::vector<int> cursor = send_start;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    for (int p : destinations[i]) {
+      const double* f =
+          points.width > 0 ? &points.fields[i * static_cast<std::size_t>(points.width)] : nullptr;
+      if (p == rank) {
+        out.add(points.position[i], points.id[i], f);
+        continue;
+      }
+      const auto slot = static_cast<std::size_t>(cursor[static_cast<std::size_t>(p)]++);
+      send_ids[slot] = points.id[i];
+      double* v = &send_values[slot * static_cast<std::size_t>(per_point)];
+      for (int a = 0; a < D; ++a) v[a] = points.position[i][a];
+      for (int k = 0; k < points.width; ++k) v[D + k] = f[k];
+    }
+
+  std::vector<std::int64_t> receive_ids(static_cast<std::size_t>(received));
+  MPI_Alltoallv(send_ids.data(), send_points.data(), send_start.data(), MPI_INT64_T,
+                receive_ids.data(), receive_points.data(), receive_start.data(), MPI_INT64_T,
+                MPI_COMM_WORLD);
+  auto scaled = [per_point](std::vector<int> v) {
+    for (int& x : v) x *= per_point;
+    return v;
+  };
+  std::vector<double> receive_values(static_cast<std::size_t>(received) * per_point);
+  const auto send_counts = scaled(send_points), send_offsets = scaled(send_start);
+  const auto receive_counts = scaled(receive_points), receive_offsets = scaled(receive_start);
+  MPI_Alltoallv(send_values.data(), send_counts.data(), send_offsets.data(), MPI_DOUBLE,
+                receive_values.data(), receive_counts.data(), receive_offsets.data(), MPI_DOUBLE,
+                MPI_COMM_WORLD);
+  for (int r = 0; r < received; ++r) {
+    const double* v = &receive_values[static_cast<std::size_t>(r) * per_point];
+    Eigen::Matrix<double, D, 1> x;
+    for (int a = 0; a < D; ++a) x[a] = v[a];
+    out.add(x, receive_ids[static_cast<std::size_t>(r)], v + D);
+  }
+  report.sent = sent;
+  report.received = received;
+  report.owned = static_cast<long>(out.size());
+  return out;
+}
+
+}  // namespace
+
+Processes processes() {
+  ensure_started();
+  Processes p;
+  MPI_Comm_rank(MPI_COMM_WORLD, &p.rank);
+  MPI_Comm_size(MPI_COMM_WORLD, &p.count);
+  return p;
+}
+
+template <int D>
+void PointBlock<D>::add(const Eigen::Matrix<double, D, 1>& x, std::int64_t point_id,
+                        const double* point_fields) {
+  position.push_back(x);
+  id.push_back(point_id);
+  for (int k = 0; k < width; ++k) fields.push_back(point_fields[k]);
+}
+
+template <int D>
+struct Decomposition<D>::Zoltan {
+  Zoltan_Struct* zz = nullptr;
+  Processes processes;
+  ~Zoltan() {
+    if (zz != nullptr) Zoltan_Destroy(&zz);
+  }
+};
+
+template <int D>
+Decomposition<D>::Decomposition(PointBlock<D>& points) : zoltan_(std::make_unique<Zoltan>()) {
+  zoltan_->processes = processes();
+  zoltan_->zz = Zoltan_Create(MPI_COMM_WORLD);
+  if (zoltan_->zz == nullptr) throw std::runtime_error("Zoltan_Create failed");
+  Zoltan_Struct* zz = zoltan_->zz;
+  // Recursive coordinate bisection with its cuts kept (for owner_of and the ghosts' boxes),
+  // each cut midway between the points on its two sides, each point weighing the same.
+  for (const auto& [name, value] : {std::pair{"DEBUG_LEVEL", "0"},
+                                    {"LB_METHOD", "RCB"},
+                                    {"KEEP_CUTS", "1"},
+                                    {"RETURN_LISTS", "EXPORT"},
+                                    {"NUM_GID_ENTRIES", "2"},
+                                    {"NUM_LID_ENTRIES", "1"},
+                                    {"OBJ_WEIGHT_DIM", "0"},
+                                    {"RCB_RECTILINEAR_BLOCKS", "0"},
+                                    {"AVERAGE_CUTS", "1"},
+                                    {"IMBALANCE_TOL", "1.01"}})
+    check(Zoltan_Set_Param(zz, name, value), "Zoltan_Set_Param");
+  balance(points);
+}
+
+template <int D>
+Decomposition<D>::~Decomposition() = default;
+
+template <int D>
+MigrationReport Decomposition<D>::balance(PointBlock<D>& points) {
+  Zoltan_Struct* zz = zoltan_->zz;
+  check(Zoltan_Set_Num_Obj_Fn(zz, count_points<D>, &points), "Zoltan_Set_Num_Obj_Fn");
+  check(Zoltan_Set_Obj_List_Fn(zz, list_points<D>, &points), "Zoltan_Set_Obj_List_Fn");
+  check(Zoltan_Set_Num_Geom_Fn(zz, dimension<D>, &points), "Zoltan_Set_Num_Geom_Fn");
+  check(Zoltan_Set_Geom_Multi_Fn(zz, coordinates<D>, &points), "Zoltan_Set_Geom_Multi_Fn");
+  int changes = 0, gid_entries = 0, lid_entries = 0, imports = 0, exports = 0;
+  ZOLTAN_ID_PTR import_global = nullptr, import_local = nullptr, export_global = nullptr,
+                export_local = nullptr;
+  int *import_procs = nullptr, *import_parts = nullptr, *export_procs = nullptr,
+      *export_parts = nullptr;
+  check(Zoltan_LB_Partition(zz, &changes, &gid_entries, &lid_entries, &imports, &import_global,
+                            &import_local, &import_procs, &import_parts, &exports, &export_global,
+                            &export_local, &export_procs, &export_parts),
+        "Zoltan_LB_Partition");
+  Zoltan_LB_Free_Part(&import_global, &import_local, &import_procs, &import_parts);
+  Zoltan_LB_Free_Part(&export_global, &export_local, &export_procs, &export_parts);
+  // Zoltan's lists may send points lying on a cut (a lattice row) to either side, for balance;
+  // the regions decide instead, so that a point is always in its owner's region.
+  return migrate(points);
+}
+
+template <int D>
+int Decomposition<D>::owner_of(const Eigen::Matrix<double, D, 1>& x) const {
+  double coordinates[3] = {0.0, 0.0, 0.0};
+  for (int a = 0; a < D; ++a) coordinates[a] = x[a];
+  int process = -1, part = -1;
+  check(Zoltan_LB_Point_PP_Assign(zoltan_->zz, coordinates, &process, &part),
+        "Zoltan_LB_Point_PP_Assign");
+  return process;
+}
+
+template <int D>
+MigrationReport Decomposition<D>::migrate(PointBlock<D>& points) {
+  std::vector<std::vector<int>> destinations(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) destinations[i] = {owner_of(points.position[i])};
+  MigrationReport report;
+  points =
+      exchange(points, destinations, zoltan_->processes.rank, zoltan_->processes.count, report);
+  return report;
+}
+
+template <int D>
+PointBlock<D> Decomposition<D>::ghosts(const PointBlock<D>& points, double radius) const {
+  const int rank = zoltan_->processes.rank, count = zoltan_->processes.count;
+  std::vector<int> procs(static_cast<std::size_t>(count)), parts(static_cast<std::size_t>(count));
+  std::vector<std::vector<int>> destinations(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {0.0, 0.0, 0.0};
+    for (int a = 0; a < D; ++a) {
+      lo[a] = points.position[i][a] - radius;
+      hi[a] = points.position[i][a] + radius;
+    }
+    int process_count = 0, part_count = 0;
+    check(Zoltan_LB_Box_PP_Assign(zoltan_->zz, lo[0], lo[1], lo[2], hi[0], hi[1], hi[2],
+                                  procs.data(), &process_count, parts.data(), &part_count),
+          "Zoltan_LB_Box_PP_Assign");
+    for (int k = 0; k < process_count; ++k)
+      if (procs[static_cast<std::size_t>(k)] != rank)
+        destinations[i].push_back(procs[static_cast<std::size_t>(k)]);
+  }
+  MigrationReport report;
+  return exchange(points, destinations, rank, count, report);
+}
+
+template <int D>
+double Decomposition<D>::imbalance(const PointBlock<D>& points) const {
+  const long mine = static_cast<long>(points.size());
+  long largest = 0, total = 0;
+  MPI_Allreduce(&mine, &largest, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(&mine, &total, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  const double mean = static_cast<double>(total) / zoltan_->processes.count;
+  return mean > 0.0 ? static_cast<double>(largest) / mean : 1.0;
+}
+
+template struct PointBlock<2>;
+template struct PointBlock<3>;
+template class Decomposition<2>;
+template class Decomposition<3>;
+
+}  // namespace hm::parallel

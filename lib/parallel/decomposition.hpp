@@ -1,0 +1,76 @@
+#pragma once
+// The decomposition of a run's points over processes (MPI): each process owns the points in its
+// region of space; regions come from Zoltan's recursive coordinate bisection (RCB, the cuts kept
+// so that any position can be assigned to its region). Three operations, every one collective:
+//  * balance: new regions holding equal shares of all the points, and each point sent to the
+//    process that now owns it (when the load drifts);
+//  * migrate: each point that moved out of its process's region sent to the region's owner,
+//    with the regions unchanged (every step);
+//  * ghosts: copies of the points within a radius of another process's region, sent to it (the
+//    neighbours a process needs of points it does not own).
+// A point travels with its global id and `width` doubles of fields (velocity, pressure, ...);
+// nothing is lost or duplicated (MigrationReport counts what moved). Positions in metres.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace hm::parallel {
+
+/// The processes of the run (MPI_COMM_WORLD; one when not started by mpirun). Initialises MPI
+/// (a one-process singleton without mpirun) on first use and finalises it at exit unless
+/// something else (PETSc) started it.
+struct Processes {
+  int rank = 0;   ///< this process's
+  int count = 1;  ///< in the run
+};
+Processes processes();
+
+/// This process's points: positions, global ids and `width` doubles of fields per point.
+template <int D>
+struct PointBlock {
+  int width = 0;
+  std::vector<Eigen::Matrix<double, D, 1>> position;  ///< [m]
+  std::vector<std::int64_t> id;                       ///< unique over the run
+  std::vector<double> fields;                         ///< size × width, point by point
+
+  std::size_t size() const { return position.size(); }
+  void add(const Eigen::Matrix<double, D, 1>& x, std::int64_t point_id,
+           const double* point_fields = nullptr);
+};
+
+struct MigrationReport {
+  long sent = 0;      ///< points this process sent away
+  long received = 0;  ///< points it received
+  long owned = 0;     ///< points it owns afterwards
+};
+
+template <int D>
+class Decomposition {
+ public:
+  /// Regions for `points` (every process's, balanced by count), and the points sent to them.
+  explicit Decomposition(PointBlock<D>& points);
+  ~Decomposition();
+  Decomposition(const Decomposition&) = delete;
+  Decomposition& operator=(const Decomposition&) = delete;
+
+  /// New regions of equal shares of the points, and the points sent to their owners.
+  MigrationReport balance(PointBlock<D>& points);
+  /// Each point outside this process's region sent to the owner of the region it is in.
+  MigrationReport migrate(PointBlock<D>& points);
+  /// The points of the other processes within `radius` [m] of this process's region (more
+  /// precisely: whose box of half-width `radius` reaches it), as copies with their ids and
+  /// fields, ordered by sending process and then by their order there.
+  PointBlock<D> ghosts(const PointBlock<D>& points, double radius) const;
+  /// The process whose region holds x.
+  int owner_of(const Eigen::Matrix<double, D, 1>& x) const;
+  /// The largest process's share against the mean (1 = even) over every process.
+  double imbalance(const PointBlock<D>& points) const;
+
+ private:
+  struct Zoltan;
+  std::unique_ptr<Zoltan> zoltan_;
+};
+
+}  // namespace hm::parallel
