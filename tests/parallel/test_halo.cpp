@@ -1,0 +1,137 @@
+// Kernels over owned points with ghosts appended give the one-process values (run by ctest as
+// `mpirun -np N`, N = 1…4). Every process runs the same 2-D dam break for 20 steps, then keeps
+// the points (fluid points and wall nodes) of its region of a Decomposition and the ghosts
+// within the support radius h of it; on those alone it builds neighbour lists and operators and
+// runs the flow's kernels (ldd/kernels.hpp) over its owned points. Against the same kernels on
+// every point in one piece: equal to round-off (the neighbours are summed in another order)
+// at every owned point, and every point owned once.
+#include <gtest/gtest.h>
+#include <mpi.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "ldd/kernels.hpp"
+#include "ldd/point_loop.hpp"
+#include "parallel/decomposition.hpp"
+#include "ppe_cases.hpp"
+
+namespace hm::ldd {
+namespace {
+
+using Vec2 = Vec<2>;
+
+/// The fields a point carries across processes: velocity, kind, type, wall normal.
+constexpr int kFields = 6;
+
+parallel::PointBlock<2> dealt_points(const PointSet<2>& points, const parallel::Processes& p) {
+  parallel::PointBlock<2> block;
+  block.width = kFields;
+  for (Index i = p.rank; i < points.size(); i += p.count) {
+    const double f[kFields] = {points.velocity[i].x(),
+                               points.velocity[i].y(),
+                               static_cast<double>(points.kind[i]),
+                               static_cast<double>(points.type[i]),
+                               points.wall_normal[i].x(),
+                               points.wall_normal[i].y()};
+    block.add(points.position[i], i, f);
+  }
+  return block;
+}
+
+/// Appends the points of `block` to `points` (their global ids to `ids`).
+void append(const parallel::PointBlock<2>& block, PointSet<2>& points,
+            std::vector<std::int64_t>& ids) {
+  for (std::size_t k = 0; k < block.size(); ++k) {
+    const double* f = &block.fields[k * kFields];
+    const Vec2 velocity(f[0], f[1]);
+    const Index i = static_cast<PointKind>(f[2]) == PointKind::fluid
+                        ? points.add_fluid(block.position[k], velocity)
+                        : points.add_wall_node(block.position[k], Vec2(f[4], f[5]), {});
+    points.velocity[i] = velocity;
+    points.type[i] = static_cast<PointType>(f[3]);
+    ids.push_back(block.id[k]);
+  }
+}
+
+/// What the kernels give at point i of `c`, as one vector of numbers.
+std::vector<double> kernel_values(const kernels::Cloud<2>& c, Index i, double dx, double h,
+                                  double n0) {
+  std::vector<double> v;
+  auto add = [&v](const Vec2& x) { v.insert(v.end(), {x.x(), x.y()}); };
+  const kernels::PbdParameters pbd{
+      .distance = 0.9 * dx, .wall_distance = 0.45 * dx, .relaxation = 1.0, .clamp = 0.1 * dx};
+  add(kernels::pbd_displacement(c, i, pbd).value_or(Vec2::Zero()));
+  bool near_surface = false;
+  add(kernels::concentration_gradient(c, i, h, dx, n0, near_surface));
+  v.push_back(near_surface);
+  add(kernels::smoothing_change(c, i, 0.1, h).value_or(Vec2::Zero()));
+  add(kernels::viscous_acceleration<2>(c, i, c.points.velocity, 1e-3));
+  v.push_back(kernels::is_sparse(c, i, 0.9 * n0, 0.45 * n0, h));
+  add(kernels::predicted_velocity<2>(c, i, 1e-3, Vec2(0.0, -9.81), Vec2::Zero()));
+  v.push_back(c.ops.number_density[i]);
+  return v;
+}
+
+TEST(Halo, KernelsOnOwnedPointsWithGhostsGiveTheOneProcessValues) {
+  const auto p = parallel::processes();
+  const double dx = 0.01;
+  auto flow = test::dam_break<2>(dx, Preconditioner::automatic);
+  for (int s = 0; s < 20; ++s) flow.step(flow.stable_dt(0.0).first);
+  const PointSet<2>& all = flow.points();
+  const double h = flow.support(), n0 = flow.reference_density();
+
+  // One piece: every point's neighbours and operators.
+  const Neighbours whole_nb = find_neighbours<2>(all.position, h);
+  const Operators<2> whole_ops = compute_operators<2>(all.position, whole_nb);
+  const kernels::Cloud<2> whole{all, whole_nb, whole_ops};
+
+  // This process's region: owned points first, then the ghosts within h of it.
+  auto owned = dealt_points(all, p);
+  parallel::Decomposition<2> decomposition(owned);
+  const auto ghosts = decomposition.ghosts(owned, h);
+  PointSet<2> local;
+  std::vector<std::int64_t> ids;
+  append(owned, local, ids);
+  append(ghosts, local, ids);
+  const auto owned_count = static_cast<Index>(owned.size());
+  const Neighbours local_nb = find_neighbours<2>(local.position, h);
+  const Operators<2> local_ops = compute_operators<2>(local.position, local_nb);
+  const kernels::Cloud<2> mine{local, local_nb, local_ops};
+
+  struct Differences {
+    double largest = 0.0;  // relative to the value's scale
+    long points = 0, lists_differ = 0;
+    void merge(const Differences& o) {
+      largest = std::max(largest, o.largest);
+      points += o.points;
+      lists_differ += o.lists_differ;
+    }
+  };
+  const auto d = reduce_points(owned_count, Differences{}, [&](Index i, Differences& t) {
+    const auto g = static_cast<Index>(ids[static_cast<std::size_t>(i)]);
+    ++t.points;
+    t.lists_differ += local_nb.count(i) != whole_nb.count(g);
+    const auto a = kernel_values(mine, i, dx, h, n0), b = kernel_values(whole, g, dx, h, n0);
+    for (std::size_t k = 0; k < a.size(); ++k)
+      t.largest = std::max(t.largest, std::abs(a[k] - b[k]) / (std::abs(b[k]) + 1e-3));
+  });
+  long points = d.points, total = 0, lists_differ = 0;
+  MPI_Allreduce(&points, &total, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(&d.lists_differ, &lists_differ, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  double largest = 0.0;
+  MPI_Allreduce(&d.largest, &largest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  if (p.rank == 0)
+    std::printf("%d processes: %ld points, largest relative difference %.3g, %zu ghosts here\n",
+                p.count, total, largest, ghosts.size());
+  EXPECT_EQ(total, all.size());
+  EXPECT_EQ(lists_differ, 0);
+  EXPECT_LT(largest, 1e-10);
+  if (p.count > 1) {
+    EXPECT_GT(ghosts.size(), 0u);
+  }
+}
+
+}  // namespace
+}  // namespace hm::ldd
