@@ -241,6 +241,11 @@ MigrationReport Decomposition<D>::migrate(PointBlock<D>& points) {
 
 template <int D>
 PointBlock<D> Decomposition<D>::ghosts(const PointBlock<D>& points, double radius) const {
+  return halo(points, radius).ghosts_;
+}
+
+template <int D>
+Halo<D> Decomposition<D>::halo(const PointBlock<D>& points, double radius) const {
   const int rank = zoltan_->processes.rank, count = zoltan_->processes.count;
   std::vector<int> procs(static_cast<std::size_t>(count)), parts(static_cast<std::size_t>(count));
   std::vector<std::vector<int>> destinations(points.size());
@@ -258,8 +263,44 @@ PointBlock<D> Decomposition<D>::ghosts(const PointBlock<D>& points, double radiu
       if (procs[static_cast<std::size_t>(k)] != rank)
         destinations[i].push_back(procs[static_cast<std::size_t>(k)]);
   }
+  Halo<D> halo;
   MigrationReport report;
-  return exchange(points, destinations, rank, count, report);
+  halo.ghosts_ = exchange(points, destinations, rank, count, report);
+  halo.send_counts_.assign(static_cast<std::size_t>(count), 0);
+  for (const auto& to : destinations)
+    for (int q : to) ++halo.send_counts_[static_cast<std::size_t>(q)];
+  std::vector<int> start(static_cast<std::size_t>(count), 0);
+  std::exclusive_scan(halo.send_counts_.begin(), halo.send_counts_.end(), start.begin(), 0);
+  halo.send_points_.resize(static_cast<std::size_t>(report.sent));
+  for (std::size_t i = 0; i < points.size(); ++i)  // in exchange()'s order
+    for (int q : destinations[i])
+      halo.send_points_[static_cast<std::size_t>(start[q]++)] = static_cast<int>(i);
+  halo.receive_counts_.assign(static_cast<std::size_t>(count), 0);
+  MPI_Alltoall(halo.send_counts_.data(), 1, MPI_INT, halo.receive_counts_.data(), 1, MPI_INT,
+               MPI_COMM_WORLD);
+  return halo;
+}
+
+template <int D>
+std::vector<double> Halo<D>::refresh(const std::vector<double>& owned_fields, int width) const {
+  std::vector<double> send(send_points_.size() * static_cast<std::size_t>(width));
+  for (std::size_t k = 0; k < send_points_.size(); ++k)
+    for (int f = 0; f < width; ++f)
+      send[k * width + f] = owned_fields[static_cast<std::size_t>(send_points_[k]) * width + f];
+  auto scaled = [width](const std::vector<int>& counts, std::vector<int>& starts) {
+    std::vector<int> v(counts);
+    for (int& x : v) x *= width;
+    starts.assign(v.size(), 0);
+    std::exclusive_scan(v.begin(), v.end(), starts.begin(), 0);
+    return v;
+  };
+  std::vector<int> send_starts, receive_starts;
+  const auto send_counts = scaled(send_counts_, send_starts);
+  const auto receive_counts = scaled(receive_counts_, receive_starts);
+  std::vector<double> received(ghosts_.size() * static_cast<std::size_t>(width));
+  MPI_Alltoallv(send.data(), send_counts.data(), send_starts.data(), MPI_DOUBLE, received.data(),
+                receive_counts.data(), receive_starts.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+  return received;
 }
 
 template <int D>
@@ -274,6 +315,8 @@ double Decomposition<D>::imbalance(const PointBlock<D>& points) const {
 
 template struct PointBlock<2>;
 template struct PointBlock<3>;
+template class Halo<2>;
+template class Halo<3>;
 template class Decomposition<2>;
 template class Decomposition<3>;
 

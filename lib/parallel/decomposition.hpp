@@ -7,7 +7,8 @@
 //  * migrate: each point that moved out of its process's region sent to the region's owner,
 //    with the regions unchanged (every step);
 //  * ghosts: copies of the points within a radius of another process's region, sent to it (the
-//    neighbours a process needs of points it does not own).
+//    neighbours a process needs of points it does not own); the Halo keeps who sends what to
+//    whom, so that fields computed later in a step reach the ghosts again without a search.
 // A point travels with its global id and `width` doubles of fields (velocity, pressure, ...);
 // nothing is lost or duplicated (MigrationReport counts what moved). Positions in metres.
 #include <cstdint>
@@ -46,6 +47,29 @@ struct MigrationReport {
   long owned = 0;     ///< points it owns afterwards
 };
 
+/// The ghost exchange as it was built: the ghosts a process received, and which of its owned
+/// points it sent to which process. Valid while no point changes process (within a step).
+template <int D>
+class Halo {
+ public:
+  /// The ghosts received (ids, positions and the fields of the build), by sending process.
+  const PointBlock<D>& ghosts() const { return ghosts_; }
+  /// Sends the owned points' `owned_fields` (`width` doubles a point, in the order of the
+  /// points the halo was built on) again; returns the ghosts' (`width` a ghost, ghost order).
+  /// Collective.
+  std::vector<double> refresh(const std::vector<double>& owned_fields, int width) const;
+  /// Ghost points sent and received by this process (for the cost model).
+  long sent() const { return static_cast<long>(send_points_.size()); }
+  long received() const { return static_cast<long>(ghosts_.size()); }
+
+ private:
+  template <int>
+  friend class Decomposition;
+  PointBlock<D> ghosts_;
+  std::vector<int> send_points_;                   ///< owned points, grouped by destination process
+  std::vector<int> send_counts_, receive_counts_;  ///< points, per process
+};
+
 template <int D>
 class Decomposition {
  public:
@@ -63,6 +87,8 @@ class Decomposition {
   /// precisely: whose box of half-width `radius` reaches it), as copies with their ids and
   /// fields, ordered by sending process and then by their order there.
   PointBlock<D> ghosts(const PointBlock<D>& points, double radius) const;
+  /// The same exchange, kept (Halo::refresh sends fields along it again).
+  Halo<D> halo(const PointBlock<D>& points, double radius) const;
   /// The process whose region holds x.
   int owner_of(const Eigen::Matrix<double, D, 1>& x) const;
   /// The largest process's share against the mean (1 = even) over every process.

@@ -128,6 +128,21 @@ void run_decomposition(double dx) {
   const double radius = 2.1 * dx;
   expect_complete_ghosts(block, d.ghosts(block, radius), radius, p);
 
+  // The halo sends fields computed later (a pressure, a velocity: functions of the id here)
+  // to the same ghosts again.
+  const auto halo = d.halo(block, radius);
+  EXPECT_EQ(halo.ghosts().id, d.ghosts(block, radius).id);
+  std::vector<double> later;
+  for (std::int64_t id : block.id) later.insert(later.end(), {-1.0 * id, 0.5 * id});
+  const auto refreshed = halo.refresh(later, 2);
+  ASSERT_EQ(refreshed.size(), 2 * halo.ghosts().size());
+  int stale = 0;
+  for (std::size_t g = 0; g < halo.ghosts().size(); ++g) {
+    const auto id = static_cast<double>(halo.ghosts().id[g]);
+    stale += refreshed[2 * g] != -id || refreshed[2 * g + 1] != 0.5 * id;
+  }
+  EXPECT_EQ(stale, 0);
+
   // The column collapses to the right half of the tank: the load drifts; rebalance.
   for (auto& x : block.position) x[0] = 0.6 + 0.5 * x[0];
   d.migrate(block);

@@ -9,9 +9,9 @@
 //   BM_DistributedPpe/<D>/<points>   2-D 40 k and 160 k, 3-D 27 k and 125 k fluid points
 // And the points' decomposition (parallel::Decomposition, Zoltan RCB) of a jittered lattice
 // column, then 20 steps of every point moving up to 0.2 dx: per step, the seconds of migration
-// and of the ghost exchange within h = 2.1 dx, the points migrated, the ghost points and halo
-// bytes the largest process receives (id, position and 3 fields a point), against its owned
-// points.
+// and of the ghost exchange within h = 2.1 dx (a new halo), of one refresh of D + 1 fields along
+// it (velocity and pressure), the points migrated, the ghost points and halo bytes the largest
+// process receives (id, position and 3 fields a point), against its owned points.
 //   BM_Decomposition/<D>/<points>    3-D 200 k and 1 M points
 #include <benchmark/benchmark.h>
 #include <mpi.h>
@@ -105,7 +105,7 @@ void BM_Decomposition(benchmark::State& state) {
   const double points = static_cast<double>(state.range(0));
   const double dx = D == 2 ? std::sqrt(0.18 / points) : std::cbrt(0.027 / points);
   constexpr int steps = 20;
-  double migrate_s = 0.0, ghosts_s = 0.0, imbalance = 0.0;
+  double migrate_s = 0.0, ghosts_s = 0.0, refresh_s = 0.0, imbalance = 0.0;
   long migrated = 0, ghosts = 0, owned = 0;
   for (auto _ : state) {
     auto block = parallel::test::dealt_lattice<D>(dx, processes);
@@ -116,13 +116,19 @@ void BM_Decomposition(benchmark::State& state) {
         block.position[i] += parallel::test::displacement<D>(block.id[i] * (step + 2), 0.2 * dx);
       auto start = std::chrono::steady_clock::now();
       migrated += decomposition.migrate(block).sent;
-      migrate_s += slowest(
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      migrate_s +=
+          slowest(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       start = std::chrono::steady_clock::now();
-      const auto halo = decomposition.ghosts(block, 2.1 * dx);
-      ghosts_s += slowest(
-          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
-      ghosts = std::max(ghosts, largest(static_cast<long>(halo.size())));
+      const auto halo = decomposition.halo(block, 2.1 * dx);
+      ghosts_s +=
+          slowest(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      ghosts = std::max(ghosts, largest(halo.received()));
+      // One field exchange of a step's phase: velocity and pressure.
+      const std::vector<double> fields(block.size() * (D + 1), 1.0);
+      start = std::chrono::steady_clock::now();
+      const auto refreshed = halo.refresh(fields, D + 1);
+      refresh_s +=
+          slowest(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       owned = largest(static_cast<long>(block.size()));
     }
   }
@@ -136,6 +142,7 @@ void BM_Decomposition(benchmark::State& state) {
   state.counters["migrated_per_step"] = static_cast<double>(migrated) / steps;
   state.counters["migrate_s_per_step"] = migrate_s / steps;
   state.counters["ghosts_s_per_step"] = ghosts_s / steps;
+  state.counters["refresh_s"] = refresh_s / steps;
 }
 
 BENCHMARK(BM_DistributedPpe<2>)->Arg(40000)->Arg(160000)->Iterations(1)->UseRealTime();
