@@ -1,5 +1,6 @@
 #include "ldd/ppe.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numeric>
 
@@ -27,6 +28,11 @@ double neumann_row(const PointSet<D>& pts, const Neighbours& nb, const Operators
   return diagonal;
 }
 
+/// A Neumann row without a usable diagonal (§0.2 item 5): a one-point film, a jet tip.
+bool weak_neumann(double diagonal, bool isolated, double dx) {
+  return isolated || std::abs(diagonal) < 0.2 / dx;
+}
+
 }  // namespace
 
 template <int D>
@@ -42,7 +48,7 @@ PoissonSystem assemble_poisson(PointSet<D>& pts, const Neighbours& nb, const Ope
   for (Index i = 0; i < n; ++i) {
     if (pts.type[i] != PointType::wall) continue;
     const double diag = neumann_row<D>(pts, nb, ops, i, coeff.data() + nb.offsets[i]);
-    if (ops.isolated(i) || std::abs(diag) < 0.2 / dx) {
+    if (weak_neumann(diag, ops.isolated(i), dx)) {
       pts.type[i] = PointType::surface;
       ++weak;
     }
@@ -328,6 +334,74 @@ SolveReport PoissonSolver::solve(const PoissonSystem& sys, std::vector<double>& 
   return rep;
 }
 
+template <int D>
+Index demote_weak_neumann_rows(PointSet<D>& pts, const Neighbours& nb, const Operators<D>& ops,
+                               double dx, Index owned) {
+  HM_ASSERT(owned <= pts.size(), "{} owned of {} points", owned, pts.size());
+  Index weak = 0;
+  std::vector<double> coeff;
+  for (Index i = 0; i < owned; ++i) {
+    if (pts.type[i] != PointType::wall) continue;
+    coeff.resize(static_cast<std::size_t>(nb.count(i)));
+    if (weak_neumann(neumann_row<D>(pts, nb, ops, i, coeff.data()), ops.isolated(i), dx)) {
+      pts.type[i] = PointType::surface;
+      ++weak;
+    }
+  }
+  return weak;
+}
+
+template <int D>
+PoissonRows assemble_poisson_rows(const PointSet<D>& pts, const Neighbours& nb,
+                                  const Operators<D>& ops, const PoissonData& data, Index owned,
+                                  std::span<const std::int64_t> global_unknown,
+                                  std::int64_t global_unknowns) {
+  HM_ASSERT(global_unknown.size() == static_cast<std::size_t>(pts.size()),
+            "{} global unknown numbers for {} points", global_unknown.size(), pts.size());
+  PoissonRows rows;
+  for (Index i = 0; i < owned; ++i)
+    if (global_unknown[static_cast<std::size_t>(i)] >= 0) rows.point_of.push_back(i);
+  const auto m = static_cast<Index>(rows.point_of.size());
+  rows.rhs.resize(m);
+  std::vector<int> outer{0};
+  std::vector<int> columns;
+  std::vector<double> values, coeff;
+  std::vector<std::pair<std::int64_t, double>> row;
+  for (Index r = 0; r < m; ++r) {
+    const Index i = rows.point_of[r];
+    const bool wall = pts.type[i] == PointType::wall;
+    const auto nbr = nb.of(i);
+    coeff.resize(nbr.size());
+    if (wall)
+      neumann_row<D>(pts, nb, ops, i, coeff.data());
+    else
+      std::copy_n(ops.laplacian.data() + nb.offsets[i], nbr.size(), coeff.data());
+    double diag = 0.0, rhs = wall ? data.neumann[i] : data.source[i];
+    for (double c : coeff) diag -= c;
+    row.assign(1, {global_unknown[static_cast<std::size_t>(i)], 1.0});
+    for (std::size_t k = 0; k < nbr.size(); ++k) {
+      const Index j = nbr[k];
+      const std::int64_t u = global_unknown[static_cast<std::size_t>(j)];
+      if (u >= 0)
+        row.emplace_back(u, coeff[k] / diag);
+      else if (dirichlet_type(pts.type[j]) && !data.dirichlet.empty())
+        rhs -= coeff[k] * data.dirichlet[j];
+    }
+    std::sort(row.begin(), row.end());
+    for (const auto& [column, value] : row) {
+      columns.push_back(static_cast<int>(column));
+      values.push_back(value);
+    }
+    outer.push_back(static_cast<int>(columns.size()));
+    rows.rhs[r] = rhs / diag;
+  }
+  const Eigen::Map<const linsolve::CsrMatrix> view(m, static_cast<Eigen::Index>(global_unknowns),
+                                                   static_cast<Eigen::Index>(values.size()),
+                                                   outer.data(), columns.data(), values.data());
+  rows.matrix = view;
+  return rows;
+}
+
 SolveReport solve_poisson(const PoissonSystem& sys, std::vector<double>& pressure,
                           const SolverOptions& opt) {
   PoissonSolver solver(opt);
@@ -376,6 +450,16 @@ template PoissonSystem assemble_poisson<2>(PointSet<2>&, const Neighbours&, cons
                                            const PoissonData&, double);
 template PoissonSystem assemble_poisson<3>(PointSet<3>&, const Neighbours&, const Operators<3>&,
                                            const PoissonData&, double);
+template Index demote_weak_neumann_rows<2>(PointSet<2>&, const Neighbours&, const Operators<2>&,
+                                           double, Index);
+template Index demote_weak_neumann_rows<3>(PointSet<3>&, const Neighbours&, const Operators<3>&,
+                                           double, Index);
+template PoissonRows assemble_poisson_rows<2>(const PointSet<2>&, const Neighbours&,
+                                              const Operators<2>&, const PoissonData&, Index,
+                                              std::span<const std::int64_t>, std::int64_t);
+template PoissonRows assemble_poisson_rows<3>(const PointSet<3>&, const Neighbours&,
+                                              const Operators<3>&, const PoissonData&, Index,
+                                              std::span<const std::int64_t>, std::int64_t);
 template PoissonData ppe_data<2>(const PointSet<2>&, const Neighbours&, const Operators<2>&,
                                  std::span<const Vec<2>>, std::span<const Vec<2>>,
                                  const PpeOptions<2>&);

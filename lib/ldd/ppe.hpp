@@ -49,6 +49,33 @@ template <int D>
 PoissonSystem assemble_poisson(PointSet<D>& points, const Neighbours& neighbours,
                                const Operators<D>& ops, const PoissonData& data, double dx);
 
+/// The PPE over processes, where a process holds its owned points [0, owned) and after them
+/// ghost copies of other processes' points within h (parallel/decomposition.hpp), in two steps
+/// with an exchange between:
+///  1. demote_weak_neumann_rows: the owned wall nodes whose Neumann row has no usable diagonal
+///     become SURFACE (as assemble_poisson does); their owners' types must then reach the
+///     ghosts, and each point its global unknown number (−1: Dirichlet or inactive);
+///  2. assemble_poisson_rows: the rows of the owned unknowns, in the order of their points, with
+///     global column numbers (sorted within each row) — this process's block of rows of the
+///     system assemble_poisson builds from all the points in one piece (to round-off: the
+///     neighbours are summed in another order).
+/// Returns the number of rows demoted.
+template <int D>
+Index demote_weak_neumann_rows(PointSet<D>& points, const Neighbours& neighbours,
+                               const Operators<D>& ops, double dx, Index owned);
+
+struct PoissonRows {
+  linsolve::CsrMatrix matrix;   ///< owned unknowns × all the processes' unknowns, unit diagonal
+  Eigen::VectorXd rhs;          ///< of the owned unknowns
+  std::vector<Index> point_of;  ///< row → (owned) point
+};
+
+template <int D>
+PoissonRows assemble_poisson_rows(const PointSet<D>& points, const Neighbours& neighbours,
+                                  const Operators<D>& ops, const PoissonData& data, Index owned,
+                                  std::span<const std::int64_t> global_unknown,
+                                  std::int64_t global_unknowns);
+
 /// Makes `points` (unknowns of `system`) Dirichlet p = 0 without renumbering the unknowns: each
 /// one's row becomes x = 0, its column stays (multiplying that 0). The solution is the one
 /// assemble_poisson gives with those points Dirichlet p = 0 — no other row depends on a
