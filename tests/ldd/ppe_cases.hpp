@@ -10,9 +10,9 @@
 
 namespace hm::ldd::test {
 
+/// The dam break at spacing dx [m] with the PPE solver options `ppe`.
 template <int D>
-FlowSolver<D> dam_break(double dx, Preconditioner preconditioner,
-                        linsolve::ReusePolicy reuse = {}) {
+FlowSolver<D> dam_break(double dx, const SolverOptions& ppe) {
   Vec<D> size, column;
   size[0] = 1.2;
   column[0] = 0.6;
@@ -31,10 +31,19 @@ FlowSolver<D> dam_break(double dx, Preconditioner preconditioner,
   FlowOptions<D> o;
   o.dx = dx;
   o.gravity[D - 1] = -9.81;
-  o.ppe.preconditioner = preconditioner;
-  o.ppe.reuse = reuse;
+  o.ppe = ppe;
   auto x = seed_box<D>(fluid, dx, walls);
   return FlowSolver<D>(std::move(walls), x, {}, o);
+}
+
+/// The same with the flow's PPE options but for the preconditioner and the reuse policy.
+template <int D>
+FlowSolver<D> dam_break(double dx, Preconditioner preconditioner,
+                        linsolve::ReusePolicy reuse = {}) {
+  SolverOptions ppe = FlowOptions<D>{}.ppe;
+  ppe.preconditioner = preconditioner;
+  ppe.reuse = reuse;
+  return dam_break<D>(dx, ppe);
 }
 
 /// The spacing that gives the column about `points` fluid points: 0.18 m² / dx² (2-D),

@@ -13,39 +13,21 @@
 #include <benchmark/benchmark.h>
 #include <omp.h>
 
-#include "flow_cases.hpp"
+#include "ppe_cases.hpp"
 
 namespace hm::ldd {
 namespace {
 
+/// The dam break (tests/ldd/ppe_cases.hpp) with the PPE of series `ppe`.
 template <int D>
 FlowSolver<D> dam_break(double dx, int ppe) {
-  // Column H × 2H (H = 0.3 m) in a tank 4H long; 3-D: 0.15 m wide (Lobovsky-like).
-  Vec<D> size, column;
-  size[0] = 1.2;
-  column[0] = 0.6;
-  if constexpr (D == 3) {
-    size[1] = 0.15;
-    column[1] = 0.15;
-  }
-  size[D - 1] = 0.6;
-  column[D - 1] = 0.3;
-  const Box<D> fluid{Vec<D>::Zero(), column};
-  std::vector<std::string> faces =
-      D == 2 ? std::vector<std::string>{"xmin", "xmax", "ymin"}
-             : std::vector<std::string>{"xmin", "xmax", "ymin", "ymax", "zmin"};
-  std::vector<WallMesh<D>> walls;
-  walls.push_back(test::box_tank<D>(size, 4 * dx, faces));
-  FlowOptions<D> o;
-  o.dx = dx;
-  o.gravity[D - 1] = -9.81;
-  o.ppe.amg_unknowns = 0;  // automatic = Jacobi, ILU when it stalls
-  if (ppe > 0) o.ppe.preconditioner = Preconditioner::boomeramg;
-  o.ppe.reuse.across_steps = ppe == 2;
-  if (ppe == 3) o.ppe.amg_drop = 0.0;
-  if (ppe == 4) o.ppe = ppe_solver_defaults(D);
-  auto x = seed_box<D>(fluid, dx, walls);
-  return FlowSolver<D>(std::move(walls), x, {}, o);
+  SolverOptions o = FlowOptions<D>{}.ppe;
+  o.amg_unknowns = 0;  // automatic = Jacobi, ILU when it stalls
+  if (ppe > 0) o.preconditioner = Preconditioner::boomeramg;
+  o.reuse.across_steps = ppe == 2;
+  if (ppe == 3) o.amg_drop = 0.0;
+  if (ppe == 4) o = ppe_solver_defaults(D);
+  return test::dam_break<D>(dx, o);
 }
 
 template <int D>
