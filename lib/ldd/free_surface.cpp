@@ -120,16 +120,18 @@ bool beyond_the_fluid(const PointSet<D>& pts, const Neighbours& nb, Index i, con
 
 template <int D>
 Index deactivate_wall_nodes_beyond_fluid(PointSet<D>& pts, Neighbours& nb,
-                                         const FreeSurfaceOptions& opt) {
+                                         const FreeSurfaceOptions& opt, Index owned) {
   const double cos_wall_cone = std::cos(opt.wall_cone_degrees * std::numbers::pi / 180.0);
   const Index n = pts.size();
   HM_ASSERT(nb.points() == n, "neighbour lists of {} points for {} points", nb.points(), n);
   // Decide for every node first, then remove: the test reads fluid neighbours only (and wall
   // nodes of other walls, which it does not change), so the order does not matter.
+  // Only [0, owned) are decided (all with owned < 0); ghosts' owners decide for them.
+  const Index decided = owned < 0 ? n : owned;
   std::vector<char> dry(static_cast<std::size_t>(n), 0);
   Index count = 0;
 #pragma omp parallel for schedule(dynamic, 256) reduction(+ : count)
-  for (Index i = 0; i < n; ++i) {
+  for (Index i = 0; i < decided; ++i) {
     if (pts.kind[i] != PointKind::wall || pts.type[i] == PointType::inactive) continue;
     const auto m = fluid_moments<D>(pts, nb, i);
     if (beyond_the_fluid<D>(pts, nb, i, m.offset, opt, cos_wall_cone)) {
@@ -211,9 +213,9 @@ FreeSurfaceReport detect_free_surface(PointSet<D>& pts, const Neighbours& nb,
 }
 
 template Index deactivate_wall_nodes_beyond_fluid<2>(PointSet<2>&, Neighbours&,
-                                                     const FreeSurfaceOptions&);
+                                                     const FreeSurfaceOptions&, Index);
 template Index deactivate_wall_nodes_beyond_fluid<3>(PointSet<3>&, Neighbours&,
-                                                     const FreeSurfaceOptions&);
+                                                     const FreeSurfaceOptions&, Index);
 template double lattice_number_density<2>(double, double);
 template double lattice_number_density<3>(double, double);
 template FreeSurfaceReport detect_free_surface<2>(PointSet<2>&, const Neighbours&,

@@ -196,12 +196,13 @@ Neighbours find_wet_neighbours(const PointSet<D>& points, double radius) {
 }
 
 template <int D>
-Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& nb) {
+Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& nb, Index owned) {
   const Index n = points.size();
   HM_ASSERT(nb.points() == n, "neighbour lists of {} points for {} points", nb.points(), n);
+  const Index decided = owned < 0 ? n : owned;
   Index inactive = 0;
 #pragma omp parallel for reduction(+ : inactive)
-  for (Index i = 0; i < n; ++i) {
+  for (Index i = 0; i < decided; ++i) {
     if (points.kind[i] != PointKind::wall) continue;
     bool wet = false;
     for (Index j : nb.of(i)) wet = wet || points.kind[j] == PointKind::fluid;
@@ -212,18 +213,24 @@ Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& nb) {
       points.type[i] = PointType::wall;
     }
   }
-  if (inactive > 0)
-    remove_pairs(nb, [&](Index i, Index j) {
-      return points.type[i] == PointType::inactive || points.type[j] == PointType::inactive;
-    });
+  if (inactive > 0) remove_pairs_with_inactive(points, nb);
   return inactive;
+}
+
+template <int D>
+void remove_pairs_with_inactive(const PointSet<D>& points, Neighbours& nb) {
+  remove_pairs(nb, [&](Index i, Index j) {
+    return points.type[i] == PointType::inactive || points.type[j] == PointType::inactive;
+  });
 }
 
 template Neighbours find_neighbours<2>(std::span<const Vec<2>>, double);
 template Neighbours find_neighbours<3>(std::span<const Vec<3>>, double);
 template Neighbours find_wet_neighbours<2>(const PointSet<2>&, double);
 template Neighbours find_wet_neighbours<3>(const PointSet<3>&, double);
-template Index deactivate_dry_wall_nodes<2>(PointSet<2>&, Neighbours&);
-template Index deactivate_dry_wall_nodes<3>(PointSet<3>&, Neighbours&);
+template Index deactivate_dry_wall_nodes<2>(PointSet<2>&, Neighbours&, Index);
+template Index deactivate_dry_wall_nodes<3>(PointSet<3>&, Neighbours&, Index);
+template void remove_pairs_with_inactive<2>(const PointSet<2>&, Neighbours&);
+template void remove_pairs_with_inactive<3>(const PointSet<3>&, Neighbours&);
 
 }  // namespace hm::ldd

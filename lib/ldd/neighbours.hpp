@@ -69,8 +69,15 @@ void remove_pairs(Neighbours& nb, Drop&& drop) {
 
 /// Wall nodes with no fluid neighbour become PointType::inactive and every pair with them is
 /// removed (spec §0.2 item 3). An inactive node with a fluid neighbour again becomes
-/// PointType::wall. Returns the number of inactive nodes.
+/// PointType::wall. Returns the number of inactive nodes. Only the points [0, owned) are
+/// decided (all with owned < 0): past them are ghosts (ldd/point_loop.hpp), whose own lists
+/// end at the halo's edge; their owners decide, and remove_pairs_with_inactive follows once
+/// their types have arrived.
 template <int D>
-Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& neighbours);
+Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& neighbours, Index owned = -1);
+
+/// Removes every pair with an inactive point.
+template <int D>
+void remove_pairs_with_inactive(const PointSet<D>& points, Neighbours& neighbours);
 
 }  // namespace hm::ldd

@@ -26,8 +26,9 @@ namespace {
 
 using Vec2 = Vec<2>;
 
-/// The fields a point carries across processes: velocity, kind, type, wall normal.
-constexpr int kFields = 6;
+/// The fields a point carries across processes: velocity, kind, type, wall normal, and a wall
+/// node's host (wall, element, barycentric coordinates).
+constexpr int kFields = 10;
 
 parallel::PointBlock<2> dealt_points(const PointSet<2>& points, const parallel::Processes& p) {
   parallel::PointBlock<2> block;
@@ -38,7 +39,11 @@ parallel::PointBlock<2> dealt_points(const PointSet<2>& points, const parallel::
                                static_cast<double>(points.kind[i]),
                                static_cast<double>(points.type[i]),
                                points.wall_normal[i].x(),
-                               points.wall_normal[i].y()};
+                               points.wall_normal[i].y(),
+                               static_cast<double>(points.host[i].body),
+                               static_cast<double>(points.host[i].element),
+                               points.host[i].barycentric.x(),
+                               points.host[i].barycentric.y()};
     block.add(points.position[i], i, f);
   }
   return block;
@@ -52,7 +57,9 @@ void append(const parallel::PointBlock<2>& block, PointSet<2>& points,
     const Vec2 velocity(f[0], f[1]);
     const Index i = static_cast<PointKind>(f[2]) == PointKind::fluid
                         ? points.add_fluid(block.position[k], velocity)
-                        : points.add_wall_node(block.position[k], Vec2(f[4], f[5]), {});
+                        : points.add_wall_node(
+                              block.position[k], Vec2(f[4], f[5]),
+                              {static_cast<int>(f[6]), static_cast<Index>(f[7]), Vec2(f[8], f[9])});
     points.velocity[i] = velocity;
     points.type[i] = static_cast<PointType>(f[3]);
     ids.push_back(block.id[k]);
@@ -184,6 +191,96 @@ TEST(Halo, KernelsOnOwnedPointsWithGhostsGiveTheOneProcessValues) {
   EXPECT_EQ(all_types_differ, 0);
   EXPECT_LT(most[0], 1e-10);
   EXPECT_LT(most[1], 1e-10);
+}
+
+/// Sets the ghosts' (points from `owned` on) types to their owners'.
+void refresh_types(const parallel::Halo<2>& halo, PointSet<2>& points, Index owned) {
+  std::vector<double> owned_types(static_cast<std::size_t>(owned));
+  for (Index i = 0; i < owned; ++i) owned_types[i] = static_cast<double>(points.type[i]);
+  const auto ghost_types = halo.refresh(owned_types, 1);
+  for (std::size_t k = 0; k < ghost_types.size(); ++k)
+    points.type[owned + static_cast<Index>(k)] = static_cast<PointType>(ghost_types[k]);
+}
+
+/// The flow's neighbour rebuild (FlowSolver::rebuild_neighbours) on points whose first `owned`
+/// are owned and the rest ghosts (halo null: one piece): wet neighbours, pairs through walls
+/// cut, the wall nodes' weights, dry nodes and nodes beyond the fluid inactive — each decided by
+/// the owner, the ghosts' types and weights refreshed before the pairs go.
+std::pair<Neighbours, std::vector<double>> rebuild(PointSet<2>& points, Index owned,
+                                                   const parallel::Halo<2>* halo,
+                                                   const FlowSolver<2>& flow) {
+  const double h = flow.support();
+  Neighbours nb = find_wet_neighbours<2>(points, h);
+  cut_pairs_through_thin_walls<2>(nb, points, flow.walls());
+  std::vector<double> weight = wall_node_weights<2>(points, h, flow.dx());
+  if (halo != nullptr) {
+    const auto ghost_weight =
+        halo->refresh(std::vector<double>(weight.begin(), weight.begin() + owned), 1);
+    std::copy(ghost_weight.begin(), ghost_weight.end(), weight.begin() + owned);
+  }
+  deactivate_dry_wall_nodes<2>(points, nb, owned);
+  if (halo != nullptr) {
+    refresh_types(*halo, points, owned);
+    remove_pairs_with_inactive<2>(points, nb);
+  }
+  FreeSurfaceOptions surface = flow.options().free_surface;
+  surface.reference_density = flow.reference_density();
+  deactivate_wall_nodes_beyond_fluid<2>(points, nb, surface, owned);
+  if (halo != nullptr) {
+    refresh_types(*halo, points, owned);
+    remove_pairs_with_inactive<2>(points, nb);
+  }
+  return {std::move(nb), std::move(weight)};
+}
+
+TEST(Halo, TheFlowsNeighbourRebuildOnOwnedPointsGivesTheOnePieceListsAndOperators) {
+  const auto p = parallel::processes();
+  const double dx = 0.01;
+  auto flow = test::dam_break<2>(dx, Preconditioner::automatic);
+  for (int s = 0; s < 20; ++s) flow.step(flow.stable_dt(0.0).first);
+  const double h = flow.support(), n0 = flow.reference_density();
+  const auto& options = flow.options().operators;
+
+  PointSet<2> one = flow.points();
+  const auto [whole_nb, whole_weight] = rebuild(one, one.size(), nullptr, flow);
+  const auto whole_ops = compute_operators<2>(one.position, whole_nb, options, whole_weight);
+
+  auto owned = dealt_points(flow.points(), p);
+  parallel::Decomposition<2> decomposition(owned);
+  const auto halo = decomposition.halo(owned, h);
+  PointSet<2> local;
+  std::vector<std::int64_t> ids;
+  append(owned, local, ids);
+  append(halo.ghosts(), local, ids);
+  const auto n_owned = static_cast<Index>(owned.size());
+  const auto [nb, weight] = rebuild(local, n_owned, &halo, flow);
+  const auto ops = compute_operators<2>(local.position, nb, options, weight);
+
+  long lists_differ = 0, types_differ = 0;
+  double largest = 0.0;
+  for (Index i = 0; i < n_owned; ++i) {
+    const auto g = static_cast<Index>(ids[static_cast<std::size_t>(i)]);
+    std::vector<Index> list;
+    for (Index j : nb.of(i)) list.push_back(static_cast<Index>(ids[static_cast<std::size_t>(j)]));
+    std::sort(list.begin(), list.end());
+    const auto expected = whole_nb.of(g);
+    lists_differ += !std::equal(list.begin(), list.end(), expected.begin(), expected.end());
+    types_differ += local.type[i] != one.type[g];
+    const auto a = kernel_values({local, nb, ops}, i, dx, h, n0);
+    const auto b = kernel_values({one, whole_nb, whole_ops}, g, dx, h, n0);
+    for (std::size_t k = 0; k < a.size(); ++k)
+      largest = std::max(largest, std::abs(a[k] - b[k]) / (std::abs(b[k]) + 1e-3));
+  }
+  long counts[2] = {lists_differ, types_differ}, all_counts[2] = {};
+  double all_largest = 0.0;
+  MPI_Allreduce(counts, all_counts, 2, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  MPI_Allreduce(&largest, &all_largest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  if (p.rank == 0)
+    std::printf("rebuild on %d processes: %ld lists and %ld types differ; kernels within %.3g\n",
+                p.count, all_counts[0], all_counts[1], all_largest);
+  EXPECT_EQ(all_counts[0], 0);
+  EXPECT_EQ(all_counts[1], 0);
+  EXPECT_LT(all_largest, 1e-10);
 }
 
 }  // namespace
