@@ -1,5 +1,6 @@
 #include "parallel/decomposition.hpp"
 
+#include <cstdio>
 #include <cstdlib>
 #include <mutex>
 #include <numeric>
@@ -152,6 +153,14 @@ Processes processes() {
   MPI_Comm_rank(MPI_COMM_WORLD, &p.rank);
   MPI_Comm_size(MPI_COMM_WORLD, &p.count);
   return p;
+}
+
+void abort_run(const std::string& what, int exit_code) {
+  const Processes p = processes();
+  std::fprintf(stderr, "hydromodal: process %d of %d failed: %s\n", p.rank, p.count, what.c_str());
+  std::fflush(stderr);
+  MPI_Abort(MPI_COMM_WORLD, exit_code);
+  std::_Exit(exit_code);  // MPI_Abort does not return; this is for the compiler
 }
 
 template <int D>

@@ -13,6 +13,7 @@
 // nothing is lost or duplicated (MigrationReport counts what moved). Positions in metres.
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -27,6 +28,12 @@ struct Processes {
   int count = 1;  ///< in the run
 };
 Processes processes();
+
+/// Ends the whole run from one process: writes "hydromodal: process R of N failed: <what>" to
+/// stderr and aborts every process of the run with `exit_code` (MPI_Abort), so that the others,
+/// waiting in a collective call for this one, do not hang. For a failure that only some
+/// processes see (an exception on one rank); never returns.
+[[noreturn]] void abort_run(const std::string& what, int exit_code);
 
 /// This process's points: positions, global ids and `width` doubles of fields per point.
 template <int D>
