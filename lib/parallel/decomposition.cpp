@@ -1,5 +1,6 @@
 #include "parallel/decomposition.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
@@ -172,6 +173,49 @@ void PointBlock<D>::add(const Eigen::Matrix<double, D, 1>& x, std::int64_t point
 }
 
 template <int D>
+PointBlock<D> gather_on_first(const PointBlock<D>& points) {
+  const Processes p = processes();
+  const int mine = static_cast<int>(points.size());
+  std::vector<int> counts(static_cast<std::size_t>(p.count), 0);
+  MPI_Gather(&mine, 1, MPI_INT, counts.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  // Ids, then positions and fields as one record of D + width doubles a point.
+  const int per_point = D + points.width;
+  std::vector<int> starts(counts.size(), 0), value_counts(counts.size()),
+      value_starts(counts.size());
+  std::exclusive_scan(counts.begin(), counts.end(), starts.begin(), 0);
+  for (std::size_t r = 0; r < counts.size(); ++r) {
+    value_counts[r] = counts[r] * per_point;
+    value_starts[r] = starts[r] * per_point;
+  }
+  const int total = p.rank == 0 ? starts.back() + counts.back() : 0;
+  std::vector<std::int64_t> ids(static_cast<std::size_t>(total));
+  MPI_Gatherv(points.id.data(), mine, MPI_INT64_T, ids.data(), counts.data(), starts.data(),
+              MPI_INT64_T, 0, MPI_COMM_WORLD);
+  std::vector<double> records(points.size() * static_cast<std::size_t>(per_point));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    double* v = &records[i * static_cast<std::size_t>(per_point)];
+    for (int a = 0; a < D; ++a) v[a] = points.position[i][a];
+    for (int k = 0; k < points.width; ++k) v[D + k] = points.fields[i * points.width + k];
+  }
+  std::vector<double> all(static_cast<std::size_t>(total) * per_point);
+  MPI_Gatherv(records.data(), mine * per_point, MPI_DOUBLE, all.data(), value_counts.data(),
+              value_starts.data(), MPI_DOUBLE, 0, MPI_COMM_WORLD);
+  PointBlock<D> out;
+  out.width = points.width;
+  std::vector<std::size_t> order(static_cast<std::size_t>(total));
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::sort(order.begin(), order.end(),
+            [&](std::size_t a, std::size_t b) { return ids[a] < ids[b]; });
+  for (std::size_t k : order) {
+    const double* v = &all[k * static_cast<std::size_t>(per_point)];
+    Eigen::Matrix<double, D, 1> x;
+    for (int a = 0; a < D; ++a) x[a] = v[a];
+    out.add(x, ids[k], v + D);
+  }
+  return out;
+}
+
+template <int D>
 struct Decomposition<D>::Zoltan {
   Zoltan_Struct* zz = nullptr;
   Processes processes;
@@ -324,6 +368,8 @@ double Decomposition<D>::imbalance(const PointBlock<D>& points) const {
 
 template struct PointBlock<2>;
 template struct PointBlock<3>;
+template PointBlock<2> gather_on_first<2>(const PointBlock<2>&);
+template PointBlock<3> gather_on_first<3>(const PointBlock<3>&);
 template class Halo<2>;
 template class Halo<3>;
 template class Decomposition<2>;

@@ -48,6 +48,11 @@ struct PointBlock {
            const double* point_fields = nullptr);
 };
 
+/// Every process's points on process 0, ordered by id (ids, positions, fields), for output
+/// written once; an empty block on the others. Collective.
+template <int D>
+PointBlock<D> gather_on_first(const PointBlock<D>& points);
+
 struct MigrationReport {
   long sent = 0;      ///< points this process sent away
   long received = 0;  ///< points it received

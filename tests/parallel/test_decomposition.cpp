@@ -128,6 +128,26 @@ void run_decomposition(double dx) {
   const double radius = 2.1 * dx;
   expect_complete_ghosts(block, d.ghosts(block, radius), radius, p);
 
+  // Gathered on process 0 for output: every point once, by id, with its fields.
+  const auto gathered = gather_on_first(block);
+  auto everywhere = gather_all(block, p);  // (id, position) of every point, by id below
+  std::sort(everywhere.begin(), everywhere.end(),
+            [](const auto& a, const auto& b) { return a.first < b.first; });
+  if (p.rank == 0) {
+    ASSERT_EQ(static_cast<long>(gathered.size()), total);
+    int wrong = 0;
+    for (std::size_t k = 0; k < gathered.size(); ++k) {
+      wrong += gathered.id[k] != static_cast<std::int64_t>(k);
+      wrong += gathered.position[k] != everywhere[k].second;
+      for (int f = 0; f < kWidth; ++f)
+        wrong +=
+            gathered.fields[k * kWidth + static_cast<std::size_t>(f)] != field(gathered.id[k], f);
+    }
+    EXPECT_EQ(wrong, 0);
+  } else {
+    EXPECT_EQ(gathered.size(), 0u);
+  }
+
   // The halo sends fields computed later (a pressure, a velocity: functions of the id here)
   // to the same ghosts again.
   const auto halo = d.halo(block, radius);
