@@ -333,14 +333,6 @@ std::unique_ptr<LinearSolver> make_distributed_solver(Method method, const Setti
   return std::make_unique<PetscSolver>(method, settings, /*distributed=*/true);
 }
 
-Processes processes() {
-  ensure_petsc();
-  Processes p;
-  MPI_Comm_rank(PETSC_COMM_WORLD, &p.rank);
-  MPI_Comm_size(PETSC_COMM_WORLD, &p.count);
-  return p;
-}
-
 }  // namespace hm::linsolve
 
 #else  // a build without PETSc
@@ -357,10 +349,6 @@ std::unique_ptr<LinearSolver> make_petsc_solver(Method, const Settings&) {
 
 std::unique_ptr<LinearSolver> make_distributed_solver(Method, const Settings&) {
   return nullptr;
-}
-
-Processes processes() {
-  return {};
 }
 
 }  // namespace hm::linsolve

@@ -19,11 +19,4 @@ std::unique_ptr<LinearSolver> make_petsc_solver(Method method, const Settings& s
 /// Every call is collective. Null in a build without PETSc.
 std::unique_ptr<LinearSolver> make_distributed_solver(Method method, const Settings& settings);
 
-struct Processes {
-  int rank = 0;   ///< this process's
-  int count = 1;  ///< in the run
-};
-/// This process's rank and the run's process count (initialises PETSc, and MPI with it).
-Processes processes();
-
 }  // namespace hm::linsolve

@@ -21,6 +21,7 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <type_traits>
 
 #include "dealt_points.hpp"
 #include "linsolve/petsc_solver.hpp"
@@ -39,15 +40,19 @@ const test::CapturedPpe& captured(double points) {
   return *c;
 }
 
-double slowest(double seconds) {
-  double max = seconds;
-  MPI_Allreduce(&seconds, &max, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+/// The largest of the processes' values (the slowest process's seconds, the largest share).
+template <typename T>
+T largest(T value) {
+  static_assert(std::is_same_v<T, double> || std::is_same_v<T, long>);
+  T max = value;
+  MPI_Allreduce(&value, &max, 1, std::is_same_v<T, double> ? MPI_DOUBLE : MPI_LONG, MPI_MAX,
+                MPI_COMM_WORLD);
   return max;
 }
 
 template <int D>
 void BM_DistributedPpe(benchmark::State& state) {
-  const auto processes = linsolve::processes();
+  const auto processes = parallel::processes();
   const auto& c = captured<D>(static_cast<double>(state.range(0)));
   const auto n = static_cast<int>(c.rhs.size());
   const int base = n / processes.count, extra = n % processes.count;
@@ -63,10 +68,10 @@ void BM_DistributedPpe(benchmark::State& state) {
       state.SkipWithError(solver->setup_failure().c_str());
       return;
     }
-    setup = slowest(solver->setup_seconds());
+    setup = largest(solver->setup_seconds());
     Eigen::VectorXd x = Eigen::VectorXd::Zero(rows);
     const auto s0 = solver->solve(c.rhs.segment(first, rows), x);
-    cold = slowest(s0.seconds);
+    cold = largest(s0.seconds);
     cold_iterations = s0.iterations;
     Eigen::VectorXd whole(n);
     std::vector<int> counts(static_cast<std::size_t>(processes.count)),
@@ -80,7 +85,7 @@ void BM_DistributedPpe(benchmark::State& state) {
     residual = linsolve::relative_residual(c.matrix, c.rhs, whole);
     x = c.warm_start.segment(first, rows);
     const auto s1 = solver->solve(c.rhs.segment(first, rows), x);
-    warm = slowest(s1.seconds);
+    warm = largest(s1.seconds);
     warm_iterations = s1.iterations;
   }
   state.counters["processes"] = processes.count;
@@ -91,12 +96,6 @@ void BM_DistributedPpe(benchmark::State& state) {
   state.counters["warm_iterations"] = warm_iterations;
   state.counters["warm_solve_s"] = warm;
   state.counters["true_residual"] = residual;
-}
-
-long largest(long value) {
-  long max = value;
-  MPI_Allreduce(&value, &max, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD);
-  return max;
 }
 
 template <int D>
@@ -117,18 +116,18 @@ void BM_Decomposition(benchmark::State& state) {
       auto start = std::chrono::steady_clock::now();
       migrated += decomposition.migrate(block).sent;
       migrate_s +=
-          slowest(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+          largest(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       start = std::chrono::steady_clock::now();
       const auto halo = decomposition.halo(block, 2.1 * dx);
       ghosts_s +=
-          slowest(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+          largest(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       ghosts = std::max(ghosts, largest(halo.received()));
       // One field exchange of a step's phase: velocity and pressure.
       const std::vector<double> fields(block.size() * (D + 1), 1.0);
       start = std::chrono::steady_clock::now();
       const auto refreshed = halo.refresh(fields, D + 1);
       refresh_s +=
-          slowest(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+          largest(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
       owned = largest(static_cast<long>(block.size()));
     }
   }
@@ -160,7 +159,7 @@ class Silent : public benchmark::BenchmarkReporter {
 }  // namespace hm::ldd
 
 int main(int argc, char** argv) {
-  const auto processes = hm::linsolve::processes();
+  const auto processes = hm::parallel::processes();
   benchmark::Initialize(&argc, argv);
   if (processes.rank == 0) {
     benchmark::RunSpecifiedBenchmarks();

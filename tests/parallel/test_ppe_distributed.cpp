@@ -13,6 +13,7 @@
 #include <cstdio>
 
 #include "linsolve/petsc_solver.hpp"
+#include "parallel/decomposition.hpp"
 #include "ppe_cases.hpp"
 
 namespace hm::ldd {
@@ -25,7 +26,7 @@ std::pair<int, int> block(int n, int rank, int count) {
 }
 
 TEST(DistributedPpe, GivesTheOneProcessAnswerInAsManyIterations) {
-  const auto processes = linsolve::processes();
+  const auto processes = parallel::processes();
   const test::CapturedPpe system = test::capture_ppe<2>(test::spacing_for<2>(4e4));
   const auto n = static_cast<int>(system.matrix.rows());
   ASSERT_GT(n, 35000);
@@ -69,7 +70,7 @@ TEST(DistributedPpe, GivesTheOneProcessAnswerInAsManyIterations) {
 }
 
 TEST(DistributedPpe, RefusesRowsThatDoNotMakeUpTheMatrix) {
-  const auto processes = linsolve::processes();
+  const auto processes = parallel::processes();
   // Every process gives 3 rows of a matrix of 3 × count + 1 columns: one row is missing.
   const int columns = 3 * processes.count + 1;
   linsolve::CsrMatrix a(3, columns);
