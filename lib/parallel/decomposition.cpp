@@ -231,11 +231,12 @@ Decomposition<D>::Decomposition(PointBlock<D>& points) : zoltan_(std::make_uniqu
   if (zoltan_->zz == nullptr) throw std::runtime_error("Zoltan_Create failed");
   Zoltan_Struct* zz = zoltan_->zz;
   // Recursive coordinate bisection with its cuts kept (for owner_of and the ghosts' boxes),
-  // each cut midway between the points on its two sides, each point weighing the same.
+  // each cut midway between the points on its two sides, each point weighing the same; the
+  // points are then sent by region (balance), so Zoltan returns no lists.
   for (const auto& [name, value] : {std::pair{"DEBUG_LEVEL", "0"},
                                     {"LB_METHOD", "RCB"},
                                     {"KEEP_CUTS", "1"},
-                                    {"RETURN_LISTS", "EXPORT"},
+                                    {"RETURN_LISTS", "NONE"},
                                     {"NUM_GID_ENTRIES", "2"},
                                     {"NUM_LID_ENTRIES", "1"},
                                     {"OBJ_WEIGHT_DIM", "0"},
@@ -256,6 +257,7 @@ MigrationReport Decomposition<D>::balance(PointBlock<D>& points) {
   check(Zoltan_Set_Obj_List_Fn(zz, list_points<D>, &points), "Zoltan_Set_Obj_List_Fn");
   check(Zoltan_Set_Num_Geom_Fn(zz, dimension<D>, &points), "Zoltan_Set_Num_Geom_Fn");
   check(Zoltan_Set_Geom_Multi_Fn(zz, coordinates<D>, &points), "Zoltan_Set_Geom_Multi_Fn");
+  // The cuts only: which point goes where is owner_of's (below), so no lists are built.
   int changes = 0, gid_entries = 0, lid_entries = 0, imports = 0, exports = 0;
   ZOLTAN_ID_PTR import_global = nullptr, import_local = nullptr, export_global = nullptr,
                 export_local = nullptr;
@@ -267,8 +269,8 @@ MigrationReport Decomposition<D>::balance(PointBlock<D>& points) {
         "Zoltan_LB_Partition");
   Zoltan_LB_Free_Part(&import_global, &import_local, &import_procs, &import_parts);
   Zoltan_LB_Free_Part(&export_global, &export_local, &export_procs, &export_parts);
-  // Zoltan's lists may send points lying on a cut (a lattice row) to either side, for balance;
-  // the regions decide instead, so that a point is always in its owner's region.
+  // Not Zoltan's lists, which may send points lying on a cut (a lattice row) to either side for
+  // balance: the regions decide, so that a point is always in its owner's region.
   return migrate(points);
 }
 
