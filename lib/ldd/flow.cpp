@@ -508,9 +508,10 @@ void FlowSolver<D>::regularise_positions(double dt) {
     bool any = false;
     void merge(const Moved& other) { any = any || other.any; }
   };
+  const auto cloud = this->cloud();
   for (int it = 0; it < o.pbd_iterations; ++it) {
     const auto moved = reduce_points(owned(), Moved{}, [&](Index i, Moved& m) {
-      const auto displacement = kernels::pbd_displacement(cloud(), i, pbd);
+      const auto displacement = kernels::pbd_displacement(cloud, i, pbd);
       shift[i] = displacement.value_or(Vec<D>::Zero());
       m.any = m.any || displacement.has_value();
     });
@@ -549,8 +550,8 @@ void FlowSolver<D>::shift_down_concentration_gradient(double dt, std::vector<Vec
                                           .h = support(),
                                           .n0 = n0_};
   std::vector<Vec<D>> shift(static_cast<std::size_t>(points_.size()), Vec<D>::Zero());
-  for_each_point(owned(),
-                 [&](Index i) { shift[i] = kernels::fickian_shift(cloud(), i, shifting); });
+  const auto cloud = this->cloud();
+  for_each_point(owned(), [&](Index i) { shift[i] = kernels::fickian_shift(cloud, i, shifting); });
   move_points(shift, total);
 }
 
@@ -606,9 +607,10 @@ void FlowSolver<D>::mark_sparse_points_as_surface() {
   const double total_limit = options_.sparse_density * n0_;
   const double fluid_limit = 0.5 * total_limit;
   const double h = support();
+  const auto cloud = this->cloud();
   for_each_point(owned(), [&](Index i) {
     if (!is_fluid(points_, i) || points_.type[i] != PointType::interior) return;
-    if (kernels::is_sparse(cloud(), i, total_limit, fluid_limit, h))
+    if (kernels::is_sparse(cloud, i, total_limit, fluid_limit, h))
       points_.type[i] = PointType::surface;
   });
 }
@@ -622,14 +624,15 @@ std::vector<Vec<D>> FlowSolver<D>::predict(double dt, std::vector<Vec<D>>& visco
   const Index n = points_.size();
   // Wall nodes carry the wall velocity (no-slip in the viscous term).
   const std::span<const Vec<D>> u(points_.velocity);
+  const auto cloud = this->cloud();
   viscous.assign(static_cast<std::size_t>(n), Vec<D>::Zero());
   if (o.viscosity > 0.0)
     for_each_point(owned(), [&](Index i) {
-      viscous[i] = kernels::viscous_acceleration(cloud(), i, u, o.viscosity);
+      viscous[i] = kernels::viscous_acceleration(cloud, i, u, o.viscosity);
     });
   std::vector<Vec<D>> predicted(static_cast<std::size_t>(n));
   for_each_point(owned(), [&](Index i) {
-    predicted[i] = kernels::predicted_velocity(cloud(), i, dt, o.gravity, viscous[i]);
+    predicted[i] = kernels::predicted_velocity(cloud, i, dt, o.gravity, viscous[i]);
   });
   if (o.viscous == ViscousScheme::implicit_euler && o.viscosity > 0.0)
     solve_implicit_viscosity(dt, predicted, viscous);
@@ -752,9 +755,11 @@ bool FlowSolver<D>::releases_tension(Index i) const {
 template <int D>
 void FlowSolver<D>::set_surface_pressure(std::vector<double>& dirichlet) const {
   const auto& o = options_;
+  const double h = support();
+  const auto cloud = this->cloud();
   for_each_point(owned(), [&](Index i) {
     if (!is_fluid(points_, i) || points_.type[i] != PointType::surface) return;
-    if (const auto p = kernels::surface_pressure(cloud(), i, support(), o.dx, o.density, o.gravity))
+    if (const auto p = kernels::surface_pressure(cloud, i, h, o.dx, o.density, o.gravity))
       dirichlet[i] = *p;
   });
 }
@@ -763,8 +768,9 @@ template <int D>
 void FlowSolver<D>::correct(double dt, std::span<const Vec<D>> predicted) {
   const auto grad_p = gradient<D>(points_.position, neighbours_, ops_, points_.pressure);
   const double scale = dt / options_.density;
+  const auto cloud = this->cloud();
   for_each_point(owned(), [&](Index i) {
-    points_.velocity[i] = kernels::corrected_velocity(cloud(), i, predicted[i], grad_p[i], scale);
+    points_.velocity[i] = kernels::corrected_velocity(cloud, i, predicted[i], grad_p[i], scale);
   });
 }
 
@@ -779,9 +785,10 @@ void FlowSolver<D>::smooth_velocity(double dt, double stable_step) {
   const double eps = options_.smoothing * std::min(1.0, dt / stable_step);
   if (eps <= 0.0) return;
   std::vector<Vec<D>> smoothed(points_.velocity);
+  const double h = support();
+  const auto cloud = this->cloud();
   for_each_point(owned(), [&](Index i) {
-    if (const auto change = kernels::smoothing_change(cloud(), i, eps, support()))
-      smoothed[i] += *change;
+    if (const auto change = kernels::smoothing_change(cloud, i, eps, h)) smoothed[i] += *change;
   });
   points_.velocity.swap(smoothed);
 }
