@@ -15,6 +15,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "flow_points.hpp"
 #include "linsolve/petsc_solver.hpp"
 #include "parallel/decomposition.hpp"
 #include "ppe_cases.hpp"
@@ -23,7 +24,6 @@ namespace hm::ldd {
 namespace {
 
 using Vec2 = Vec<2>;
-constexpr int kFields = 6;  // velocity, kind, type, wall normal
 
 /// Sources for the PPE: smooth functions of position and normal, the same wherever a point is.
 PoissonData data_for(const PointSet<2>& points, double dx) {
@@ -61,42 +61,20 @@ TEST(DecomposedPpe, GivesTheOnePiecePressure) {
   ASSERT_TRUE(one_report.converged);
 
   // This process's region and its ghosts.
-  parallel::PointBlock<2> owned;
-  owned.width = kFields;
-  for (Index i = p.rank; i < one.size(); i += p.count) {
-    const auto& f = flow.points();
-    const double fields[kFields] = {f.velocity[i].x(),
-                                    f.velocity[i].y(),
-                                    static_cast<double>(f.kind[i]),
-                                    static_cast<double>(f.type[i]),
-                                    f.wall_normal[i].x(),
-                                    f.wall_normal[i].y()};
-    owned.add(f.position[i], i, fields);
-  }
+  auto owned = test::dealt_points(flow.points(), p);
   parallel::Decomposition<2> decomposition(owned);
   const auto halo = decomposition.halo(owned, h);
   PointSet<2> local;
   std::vector<std::int64_t> ids;
-  for (const auto* block : std::array<const parallel::PointBlock<2>*, 2>{&owned, &halo.ghosts()})
-    for (std::size_t k = 0; k < block->size(); ++k) {
-      const double* f = &block->fields[k * kFields];
-      const Index i = static_cast<PointKind>(f[2]) == PointKind::fluid
-                          ? local.add_fluid(block->position[k], Vec2(f[0], f[1]))
-                          : local.add_wall_node(block->position[k], Vec2(f[4], f[5]), {});
-      local.type[i] = static_cast<PointType>(f[3]);
-      ids.push_back(block->id[k]);
-    }
+  test::append(owned, local, ids);
+  test::append(halo.ghosts(), local, ids);
   const auto n_owned = static_cast<Index>(owned.size());
   const Neighbours nb = find_neighbours<2>(local.position, h);
   const Operators<2> ops = compute_operators<2>(local.position, nb);
 
   // 1. Weak Neumann rows of the owned points; the types to the ghosts.
   demote_weak_neumann_rows<2>(local, nb, ops, dx, n_owned);
-  std::vector<double> owned_values(static_cast<std::size_t>(n_owned));
-  for (Index i = 0; i < n_owned; ++i) owned_values[i] = static_cast<double>(local.type[i]);
-  auto ghost_values = halo.refresh(owned_values, 1);
-  for (std::size_t g = 0; g < ghost_values.size(); ++g)
-    local.type[n_owned + static_cast<Index>(g)] = static_cast<PointType>(ghost_values[g]);
+  test::refresh_types(halo, local, n_owned);
   // 2. Global unknown numbers: the owned unknowns in order after the lower ranks'.
   long mine = 0, before = 0, unknowns = 0;
   for (Index i = 0; i < n_owned; ++i) mine += is_unknown(local.type[i]);
@@ -104,11 +82,12 @@ TEST(DecomposedPpe, GivesTheOnePiecePressure) {
   MPI_Allreduce(&mine, &unknowns, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
   if (p.rank == 0) before = 0;
   std::vector<std::int64_t> global(static_cast<std::size_t>(local.size()), -1);
+  std::vector<double> owned_values(static_cast<std::size_t>(n_owned));
   for (Index i = 0, next = static_cast<Index>(before); i < n_owned; ++i) {
     owned_values[i] = is_unknown(local.type[i]) ? next++ : -1.0;
     global[static_cast<std::size_t>(i)] = static_cast<std::int64_t>(owned_values[i]);
   }
-  ghost_values = halo.refresh(owned_values, 1);
+  const auto ghost_values = halo.refresh(owned_values, 1);
   for (std::size_t g = 0; g < ghost_values.size(); ++g)
     global[static_cast<std::size_t>(n_owned) + g] = static_cast<std::int64_t>(ghost_values[g]);
   // 3. This process's rows, solved over the processes.

@@ -14,6 +14,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "flow_points.hpp"
 #include "ldd/free_surface.hpp"
 #include "ldd/kernels.hpp"
 #include "ldd/point_loop.hpp"
@@ -24,47 +25,11 @@
 namespace hm::ldd {
 namespace {
 
+using test::append;
+using test::dealt_points;
+using test::refresh_types;
+
 using Vec2 = Vec<2>;
-
-/// The fields a point carries across processes: velocity, kind, type, wall normal, and a wall
-/// node's host (wall, element, barycentric coordinates).
-constexpr int kFields = 10;
-
-parallel::PointBlock<2> dealt_points(const PointSet<2>& points, const parallel::Processes& p) {
-  parallel::PointBlock<2> block;
-  block.width = kFields;
-  for (Index i = p.rank; i < points.size(); i += p.count) {
-    const double f[kFields] = {points.velocity[i].x(),
-                               points.velocity[i].y(),
-                               static_cast<double>(points.kind[i]),
-                               static_cast<double>(points.type[i]),
-                               points.wall_normal[i].x(),
-                               points.wall_normal[i].y(),
-                               static_cast<double>(points.host[i].body),
-                               static_cast<double>(points.host[i].element),
-                               points.host[i].barycentric.x(),
-                               points.host[i].barycentric.y()};
-    block.add(points.position[i], i, f);
-  }
-  return block;
-}
-
-/// Appends the points of `block` to `points` (their global ids to `ids`).
-void append(const parallel::PointBlock<2>& block, PointSet<2>& points,
-            std::vector<std::int64_t>& ids) {
-  for (std::size_t k = 0; k < block.size(); ++k) {
-    const double* f = &block.fields[k * kFields];
-    const Vec2 velocity(f[0], f[1]);
-    const Index i = static_cast<PointKind>(f[2]) == PointKind::fluid
-                        ? points.add_fluid(block.position[k], velocity)
-                        : points.add_wall_node(
-                              block.position[k], Vec2(f[4], f[5]),
-                              {static_cast<int>(f[6]), static_cast<Index>(f[7]), Vec2(f[8], f[9])});
-    points.velocity[i] = velocity;
-    points.type[i] = static_cast<PointType>(f[3]);
-    ids.push_back(block.id[k]);
-  }
-}
 
 /// What the kernels give at point i of `c`, as one vector of numbers.
 std::vector<double> kernel_values(const kernels::Cloud<2>& c, Index i, double dx, double h,
@@ -154,11 +119,7 @@ TEST(Halo, KernelsOnOwnedPointsWithGhostsGiveTheOneProcessValues) {
   // The ghosts' types are their owners' (a ghost's own neighbourhood is cut off at the halo's
   // edge: there it would pass for free surface, and its neighbours' PPE sources would lose
   // their volume term — 12–72 % off at 2–4 processes before this refresh).
-  std::vector<double> owned_types(static_cast<std::size_t>(owned_count));
-  for (Index i = 0; i < owned_count; ++i) owned_types[i] = static_cast<double>(local.type[i]);
-  const auto ghost_types = halo.refresh(owned_types, 1);
-  for (std::size_t k = 0; k < ghost_types.size(); ++k)
-    local.type[owned_count + static_cast<Index>(k)] = static_cast<PointType>(ghost_types[k]);
+  refresh_types(halo, local, owned_count);
   PpeOptions<2> po;
   po.gravity = Vec2(0.0, -9.81);
   po.dt = 1e-3;
@@ -191,15 +152,6 @@ TEST(Halo, KernelsOnOwnedPointsWithGhostsGiveTheOneProcessValues) {
   EXPECT_EQ(all_types_differ, 0);
   EXPECT_LT(most[0], 1e-10);
   EXPECT_LT(most[1], 1e-10);
-}
-
-/// Sets the ghosts' (points from `owned` on) types to their owners'.
-void refresh_types(const parallel::Halo<2>& halo, PointSet<2>& points, Index owned) {
-  std::vector<double> owned_types(static_cast<std::size_t>(owned));
-  for (Index i = 0; i < owned; ++i) owned_types[i] = static_cast<double>(points.type[i]);
-  const auto ghost_types = halo.refresh(owned_types, 1);
-  for (std::size_t k = 0; k < ghost_types.size(); ++k)
-    points.type[owned + static_cast<Index>(k)] = static_cast<PointType>(ghost_types[k]);
 }
 
 /// The flow's neighbour rebuild (FlowSolver::rebuild_neighbours) on points whose first `owned`
