@@ -27,6 +27,13 @@
 # the stages whose keys changed; give such a run its own VARIANT (or OUT) to keep the unmodified
 # outputs. The speed-against-error studies (pipelines/studies/) are built on this.
 #
+# Processes: `make NP=4 simulate` runs fsi-simulate as `$(MPIRUN) -np 4 fsi-simulate …`, the
+# flow's points spread over 4 MPI processes (flows with prescribed walls; the README's "Over MPI
+# processes"). MPIRUN may carry mpirun's options: MPIRUN="mpirun --hostfile hosts" on a cluster,
+# MPIRUN="mpirun --oversubscribe" for more processes than cores. NP=1 (the default) runs
+# fsi-simulate as one process, without mpirun. The outputs do not depend on NP (to the PPE
+# tolerance), so a run at another NP is not stale.
+#
 # What runs follows the scene: a [structure] section brings mesh → modes → map; a [fluid]
 # section brings simulate (on mesh.h5 when there is a structure, else fsi-simulate meshes the
 # [[wall]]s itself, as fsi-mesh needs a structure); [[load]]s without a [fluid] bring a
@@ -53,6 +60,9 @@ FSI_MAP      := $(BIN)/fsi-map/fsi-map
 FSI_SIMULATE := $(BIN)/fsi-simulate/fsi-simulate
 FSI_INSPECT  := $(BIN)/fsi-inspect/fsi-inspect
 FSI_REPORT   := $(BIN)/fsi-report/fsi-report
+NP     ?= 1
+MPIRUN ?= mpirun
+SIMULATE_LAUNCH := $(if $(filter-out 1,$(NP)),$(MPIRUN) -np $(NP))
 
 .PHONY: all mesh modes map simulate report summary clean FORCE
 
@@ -80,7 +90,7 @@ $(OUT)/mapped.h5: $(OUT)/modes.h5 FORCE
 COUPLED := $(and $(HAS_FLUID),$(HAS_STRUCTURE))
 $(OUT)/results.h5: $(if $(HAS_STRUCTURE),$(OUT)/mesh.h5) $(if $(or $(STRUCTURE_RUN),$(COUPLED)),$(OUT)/modes.h5) $(if $(COUPLED),$(OUT)/mapped.h5) FORCE
 	@mkdir -p $(OUT)
-	$(FSI_SIMULATE) $(SCENE_ARGS) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) $(if $(or $(STRUCTURE_RUN),$(COUPLED)),--modes $(OUT)/modes.h5) $(if $(COUPLED),--mapped $(OUT)/mapped.h5) -o $@ --if-stale
+	$(SIMULATE_LAUNCH) $(FSI_SIMULATE) $(SCENE_ARGS) $(if $(HAS_STRUCTURE),--mesh $(OUT)/mesh.h5) $(if $(or $(STRUCTURE_RUN),$(COUPLED)),--modes $(OUT)/modes.h5) $(if $(COUPLED),--mapped $(OUT)/mapped.h5) -o $@ --if-stale
 
 # The report (fsi-report): every probe against the scene's [[report.compare]] references, the
 # structure's response and the run monitors as PNG, the error metrics as metrics.md/.json.

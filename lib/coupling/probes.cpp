@@ -72,9 +72,13 @@ ldd::Vec<D> probe_position(const Probe<D>& probe, std::span<const ldd::WallMesh<
 template <int D>
 std::vector<double> evaluate_probes(const ldd::FlowSolver<D>& solver,
                                     std::span<const Probe<D>> probes) {
-  const auto& points = solver.points();
-  const auto& walls = solver.walls();
-  const double dx = solver.dx();
+  return evaluate_probes<D>(solver.points(), solver.walls(), solver.dx(), probes);
+}
+
+template <int D>
+std::vector<double> evaluate_probes(const ldd::PointSet<D>& points,
+                                    std::span<const ldd::WallMesh<D>> walls, double dx,
+                                    std::span<const Probe<D>> probes) {
   constexpr double missing = probe_missing_value;
   std::vector<double> row;
   for (const Probe<D>& p : probes) {
@@ -136,6 +140,12 @@ template std::vector<std::string> probe_columns<3>(std::span<const Probe<3>>);
 template std::vector<double> evaluate_probes<2>(const ldd::FlowSolver<2>&,
                                                 std::span<const Probe<2>>);
 template std::vector<double> evaluate_probes<3>(const ldd::FlowSolver<3>&,
+                                                std::span<const Probe<3>>);
+template std::vector<double> evaluate_probes<2>(const ldd::PointSet<2>&,
+                                                std::span<const ldd::WallMesh<2>>, double,
+                                                std::span<const Probe<2>>);
+template std::vector<double> evaluate_probes<3>(const ldd::PointSet<3>&,
+                                                std::span<const ldd::WallMesh<3>>, double,
                                                 std::span<const Probe<3>>);
 template std::vector<std::string> probes_without_fluid<2>(std::span<const Probe<2>>,
                                                           std::span<const std::vector<double>>);

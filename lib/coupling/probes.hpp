@@ -63,6 +63,11 @@ inline constexpr double probe_missing_value = std::numeric_limits<double>::quiet
 template <int D>
 std::vector<double> evaluate_probes(const ldd::FlowSolver<D>& solver,
                                     std::span<const Probe<D>> probes);
+/// The same from `points` (a distributed flow's, gathered), the walls and the spacing dx [m].
+template <int D>
+std::vector<double> evaluate_probes(const ldd::PointSet<D>& points,
+                                    std::span<const ldd::WallMesh<D>> walls, double dx,
+                                    std::span<const Probe<D>> probes);
 
 /// The names of the probes that saw no fluid in any of `rows` (rows of evaluate_probes, in the
 /// order of `probes`): every value missing, or for a force probe every value exactly 0.

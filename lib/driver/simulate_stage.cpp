@@ -21,6 +21,7 @@
 #include "coupling/run.hpp"
 #include "coupling/structure_run.hpp"
 #include "driver/checkpoint_io.hpp"
+#include "driver/flow_processes.hpp"
 #include "driver/flow_setup.hpp"
 #include "driver/map_stage.hpp"
 #include "driver/structure_io.hpp"
@@ -600,6 +601,11 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     setup = flow_setup<D>(scene, io::ArtefactReader(inputs.mesh, io::mesh_schema()), structure);
   }
   const auto& o = setup.options;
+  const auto processes = flow_processes<D>({.structure = coupled,
+                                            .restart = !inputs.restart.empty(),
+                                            .checkpoint_interval = setup.time.checkpoint_interval});
+  const bool writes = writes_output(processes.get());
+  if (!writes) spdlog::set_level(spdlog::level::warn);  // one log: process 0's
   spdlog::info(
       "{}: {}-D flow: {} fluid points, dx = {} m, h = {} m, ρ = {} kg/m³, ν = {} m²/s, "
       "g = [{}] m/s², to t = {} s; walls: {}; {} probe(s)",
@@ -611,9 +617,13 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     records.push_back(io::input_record(fmt::format("wall_file_{}", k), wall_files[k]));
   const std::vector<std::string> wall_names = setup.wall_names;
   const ldd::Index fluid_points = static_cast<ldd::Index>(setup.fluid.size());
-  ldd::FlowSolver<D> solver(std::move(setup.walls), setup.fluid, setup.velocity, o);
-  spdlog::info("{}: {} wall nodes; initial pressure solved", stage_name,
-               solver.points().size() - fluid_points);
+  ldd::FlowSolver<D> solver(std::move(setup.walls), setup.fluid, setup.velocity, o, 0.0, processes);
+  if (processes)
+    spdlog::info("{}: over {} processes (each its region of the points, ghosts within h)",
+                 stage_name, processes->processes());
+  else
+    spdlog::info("{}: {} wall nodes; initial pressure solved", stage_name,
+                 solver.points().size() - fluid_points);
 
   std::vector<coupling::FlexibleBody<D>> bodies;
   std::vector<SurfaceProbe> displacement;
@@ -675,23 +685,31 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     for (int a = 0; a < D; ++a) columns.push_back(p.name + axes[static_cast<std::size_t>(a)]);
   }
   std::optional<io::ProbeCsvWriter> csv;
-  if (!columns.empty())
+  if (!writes) {
+  } else if (!columns.empty()) {
     csv.emplace(folder / "probes.csv", columns);
-  else
+  } else {
     std::filesystem::remove(folder / "probes.csv");
+  }
   if (csv && checkpoint)  // the rows up to the checkpoint, as the interrupted run wrote them
     for (std::size_t k = 0; k < checkpoint->run.probes.time.size(); ++k)
       csv->write_row(checkpoint->run.probes.time[k], checkpoint->run.probes.rows[k]);
-  ldd::SnapshotWriter<D> snapshots(folder / "snapshots", "flow");
+  std::optional<ldd::SnapshotWriter<D>> snapshots;
+  if (writes) snapshots.emplace(folder / "snapshots", "flow");
   if (checkpoint)
-    snapshots.resume(static_cast<std::size_t>(checkpoint->run.snapshots), solver.walls(),
-                     wall_names, body_fields<D>(solver, bodies));
+    snapshots->resume(static_cast<std::size_t>(checkpoint->run.snapshots), solver.walls(),
+                      wall_names, body_fields<D>(solver, bodies));
   std::optional<ldd::SnapshotWriter<D>> failed;
   Progress progress(stage_name, setup.time.end, "s", spdlog::get_level() > spdlog::level::info);
 
   coupling::RunSinks<D> sinks;
   if (!columns.empty()) {
     sinks.evaluate_probes = [&](const ldd::FlowSolver<D>& s) {
+      if (processes) {  // from the points gathered on process 0, which writes them
+        const auto points = gather_points<D>(s);
+        if (!writes) return std::vector<double>(columns.size(), coupling::probe_missing_value);
+        return coupling::evaluate_probes<D>(points, s.walls(), s.dx(), setup.probes);
+      }
       std::vector<double> row = coupling::evaluate_probes<D>(s, setup.probes);
       for (const SurfaceProbe& p : displacement) {
         const ldd::Vec<D> u = bodies.front().displacement(p.vertex);
@@ -699,13 +717,19 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
       }
       return row;
     };
-    sinks.probe_row = [&](double t, std::span<const double> v) { csv->write_row(t, v); };
+    sinks.probe_row = [&](double t, std::span<const double> v) {
+      if (csv) csv->write_row(t, v);
+    };
   }
   sinks.snapshot = [&](const ldd::FlowSolver<D>& s, coupling::SnapshotKind kind) {
+    std::optional<ldd::PointSet<D>> gathered;
+    if (processes) gathered = gather_points<D>(s);
+    if (!writes) return;
     if (kind == coupling::SnapshotKind::diverged && !failed)
       failed.emplace(folder / "snapshots", "diverged");
-    auto& writer = kind == coupling::SnapshotKind::regular ? snapshots : *failed;
-    writer.write(s.time(), s.points(), s.walls(), wall_names, body_fields<D>(s, bodies));
+    auto& writer = kind == coupling::SnapshotKind::regular ? *snapshots : *failed;
+    writer.write(s.time(), gathered ? *gathered : s.points(), s.walls(), wall_names,
+                 body_fields<D>(s, bodies));
   };
   sinks.progress = [&](const ldd::StepMonitor& m) { progress.update(m.time); };
   sinks.checkpoint = [&](const ldd::FlowSolver<D>& s,
@@ -716,12 +740,24 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     spdlog::info("{}: checkpoint at t = {} s: {}", stage_name, s.time(), path.string());
   };
 
-  const coupling::RunResult r =
-      coupling::run<D>(solver, setup.motions, setup.time, sinks, std::span(bodies),
-                       checkpoint ? &checkpoint->run : nullptr);
+  const coupling::RunResult r = [&] {
+    try {
+      return coupling::run<D>(solver, setup.motions, setup.time, sinks, std::span(bodies),
+                              checkpoint ? &checkpoint->run : nullptr);
+    } catch (const std::exception& e) {
+      // A failure one process alone may see must not leave the others waiting (a diverged
+      // flow is not one: every process sees it and run() returns it).
+      if (processes) abort_processes(e);
+      throw;
+    }
+  }();
   if (csv) csv->finish();
   const bool completed = r.status == coupling::RunStatus::completed;
   if (completed) progress.finish();
+  if (!writes) {  // process 0 writes the results and reports
+    if (!completed) numerical_error("{}: the flow diverged at t = {} s", stage_name, r.end_time);
+    return;
+  }
 
   io::ArtefactWriter w(output, io::results_schema(), stage_name,
                        simulate_parameters(scene, inputs.mesh.empty()), records);

@@ -14,6 +14,7 @@
 #include "ldd/kernels.hpp"
 #include "ldd/point_loop.hpp"
 #include "ldd/volume.hpp"
+#include "linsolve/petsc_solver.hpp"
 
 namespace hm::ldd {
 namespace {
@@ -127,17 +128,38 @@ const SolverOptions& available_ppe_options(const SolverOptions& ppe) {
   return ppe;
 }
 
+/// The PPE's solver in a distributed flow: PETSc's BiCGSTAB with BoomerAMG (GAMG when chosen)
+/// over the processes, the rows of each process's unknowns on it.
+std::unique_ptr<linsolve::LinearSolver> make_distributed_ppe_solver(const SolverOptions& ppe) {
+  if (ppe.preconditioner == Preconditioner::jacobi || ppe.preconditioner == Preconditioner::ilu)
+    throw InputError(
+        fmt::format("flow: the PPE preconditioner \"{}\" runs in one process; over several, use "
+                    "\"boomeramg\", \"gamg\" or \"automatic\" (BoomerAMG)",
+                    to_string(ppe.preconditioner)));
+  const auto method = ppe.preconditioner == Preconditioner::gamg ? linsolve::Method::gamg
+                                                                 : linsolve::Method::boomeramg;
+  auto solver = linsolve::make_distributed_solver(
+      method,
+      {.tolerance = ppe.tolerance, .max_iterations = ppe.max_iterations, .amg_drop = ppe.amg_drop});
+  if (!solver)
+    throw InputError(
+        "flow: a flow over several processes needs the PETSc solvers, and this hydromodal was "
+        "built without them (install petsc-dev and build again)");
+  return solver;
+}
+
 }  // namespace
 
 template <int D>
 FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>> fluid,
                           std::span<const Vec<D>> velocity, const FlowOptions<D>& options,
-                          double t0)
+                          double t0, std::shared_ptr<PointExchange<D>> processes)
     : options_(options),
       walls_(std::move(walls)),
       ppe_solver_(available_ppe_options(options.ppe)),
       viscous_solver_({.primary = linsolve::Method::jacobi},
                       {.tolerance = 1e-8, .max_iterations = 500}),
+      exchange_(std::move(processes)),
       time_(t0) {
   const auto& o = options_;
   require(o.dx > 0.0, fmt::format("flow: dx = {} m must be > 0", o.dx));
@@ -153,6 +175,12 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
   require(!fluid.empty(), "flow: no fluid points");
   require(velocity.empty() || velocity.size() == fluid.size(),
           "flow: one initial velocity per fluid point is needed");
+  if (exchange_) {
+    require(o.viscous == ViscousScheme::explicit_euler || o.viscosity == 0.0,
+            "flow: the implicit viscosity is not distributed over processes (viscous = "
+            "\"explicit\" runs on any number)");
+    distributed_ppe_ = make_distributed_ppe_solver(o.ppe);
+  }
 
   for (std::size_t k = 0; k < fluid.size(); ++k)
     points_.add_fluid(fluid[k], velocity.empty() ? Vec<D>::Zero() : velocity[k]);
@@ -168,6 +196,9 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
                      : 50.0 * std::sqrt(std::max(o.gravity.norm(), 1.0) * (upper - lower).norm());
 
   const auto n = static_cast<std::size_t>(points_.size());
+  id_.resize(n);
+  std::iota(id_.begin(), id_.end(), std::int64_t{0});
+  owned_ = points_.size();
   grad_u_.assign(n, Mat<D>::Zero());
   acceleration_.assign(n, 0.0);
   wall_distance_.assign(n, -1.0);  // unknown: checked below
@@ -178,6 +209,20 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
     if (is_fluid(points_, i)) initial.push_back(points_.position[i]);
   initial_fluid_ = static_cast<Index>(initial.size());
   initial_volume_ = fluid_volume<D>(initial, o.dx, h);
+  if (exchange_) {
+    // Every process built all the points; each keeps a share (every count-th) that the
+    // first migration sends on to the regions it draws.
+    std::vector<Index> share;
+    for (Index i = exchange_->rank(); i < points_.size(); i += exchange_->processes())
+      share.push_back(i);
+    points_.retain(share);
+    permute(grad_u_, share);
+    permute(acceleration_, share);
+    permute(wall_distance_, share);
+    permute(id_, share);
+    owned_ = points_.size();
+    redistribute(/*sort=*/true);
+  }
   rebuild_neighbours();
   classify_points();
 
@@ -197,6 +242,7 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
 template <int D>
 FlowState<D> FlowSolver<D>::state() const {
   HM_ASSERT(!in_step(), "flow: state() within step {}", step_ + 1);
+  HM_ASSERT(!exchange_, "flow: state() of a distributed flow");
   FlowState<D> s;
   s.points = points_;
   s.neighbours = neighbours_;
@@ -227,6 +273,7 @@ FlowState<D> FlowSolver<D>::state() const {
 template <int D>
 void FlowSolver<D>::restore(FlowState<D> s) {
   HM_ASSERT(!in_step(), "flow: restore() within step {}", step_ + 1);
+  HM_ASSERT(!exchange_, "flow: restore() of a distributed flow");
   if (s.wall_x.size() != walls_.size())
     input_error("flow: the checkpoint has {} walls, the scene {}", s.wall_x.size(), walls_.size());
   for (std::size_t w = 0; w < walls_.size(); ++w) {
@@ -240,6 +287,8 @@ void FlowSolver<D>::restore(FlowState<D> s) {
                 s.wall_distance.size() == n && s.acceleration.size() == n,
             "flow: inconsistent state of {} points", n);
   points_ = std::move(s.points);
+  id_.resize(n);  // a checkpoint of one process: its points in order
+  std::iota(id_.begin(), id_.end(), std::int64_t{0});
   neighbours_ = std::move(s.neighbours);
   grad_u_ = std::move(s.velocity_gradient);
   wall_distance_ = std::move(s.wall_distance);
@@ -278,6 +327,7 @@ void FlowSolver<D>::resort() {
 template <int D>
 void FlowSolver<D>::resort_by(std::span<const Index> order) {
   points_.reorder(order);
+  permute(id_, order);
   // The velocities at the step's start follow (they give each point's acceleration).
   if (pending_old_velocity_.size() == order.size()) permute(pending_old_velocity_, order);
   permute(grad_u_, order);
@@ -294,10 +344,16 @@ template <int D>
 std::pair<double, StepLimit> FlowSolver<D>::stable_dt(double wall_speed) const {
   const auto& o = options_;
   double u_max = wall_speed, a_max = o.gravity.norm();
-  for (Index i = 0; i < points_.size(); ++i) {
+  for (Index i = 0; i < owned(); ++i) {
     if (!is_fluid(points_, i)) continue;
     u_max = std::max(u_max, points_.velocity[i].norm());
     a_max = std::max(a_max, acceleration_[i]);
+  }
+  if (exchange_) {
+    std::array<double, 2> limits{u_max, a_max};
+    exchange_->max(limits);
+    u_max = limits[0];
+    a_max = limits[1];
   }
   double dt = o.dt_max;
   StepLimit limit = StepLimit::maximum;
@@ -345,13 +401,19 @@ void FlowSolver<D>::begin_step(double dt) {
   regularise_positions(dt);
   lap(t, m.seconds.pbd);
   remove_escaped_points();
-  if (options_.resort_interval > 0 && (step_ + 1) % options_.resort_interval == 0) resort();
+  const bool resort_due =
+      options_.resort_interval > 0 && (step_ + 1) % options_.resort_interval == 0;
+  if (exchange_)
+    redistribute(resort_due);
+  else if (resort_due)
+    resort();
   rebuild_neighbours();
   lap(t, m.seconds.neighbours);
   ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators, node_weight_);
   lap(t, m.seconds.operators);
   detect_free_surface<D>(points_, neighbours_, ops_, options_.free_surface);
   mark_sparse_points_as_surface();
+  refresh_ghost_types();
   lap(t, m.seconds.free_surface);
   pending_predicted_ = predict(dt, pending_viscous_);
   lap(t, m.seconds.predictor);
@@ -369,6 +431,7 @@ void FlowSolver<D>::solve_pressure() {
 template <int D>
 void FlowSolver<D>::refresh_wall_kinematics() {
   HM_ASSERT(in_step(), "flow: refresh_wall_kinematics outside a step");
+  HM_ASSERT(!exchange_, "flow: a distributed flow has prescribed walls");
   update_wall_nodes<D>(points_, walls_);
   const auto& o = options_;
   const double dt = pending_dt_;
@@ -401,6 +464,7 @@ StepMonitor FlowSolver<D>::finish_step() {
 
 template <int D>
 std::vector<double> FlowSolver<D>::acceleration_pressure(std::span<const Vec<D>> acceleration) {
+  HM_ASSERT(!exchange_, "flow: a distributed flow has prescribed walls");
   HM_ASSERT(acceleration.size() == static_cast<std::size_t>(points_.size()),
             "flow: {} accelerations for {} points", acceleration.size(), points_.size());
   const Index n = points_.size();
@@ -442,6 +506,12 @@ void FlowSolver<D>::advect(double dt) {
     wall_move = std::max(wall_move, (points_.position[i] - before[k++]).norm());
     last_max_wall_speed_ = std::max(last_max_wall_speed_, points_.wall_velocity[i].norm());
   }
+  if (exchange_) {  // over every process's wall nodes, as in one piece
+    std::array<double, 2> wall{wall_move, last_max_wall_speed_};
+    exchange_->max(wall);
+    wall_move = wall[0];
+    last_max_wall_speed_ = wall[1];
+  }
   step_start_ = points_.position;
   outside_.assign(static_cast<std::size_t>(points_.size()), 0);
   for_each_point(owned(), [&](Index i) {
@@ -451,6 +521,7 @@ void FlowSolver<D>::advect(double dt) {
     wall_distance_[i] -= dr.norm() + wall_move;
   });
   keep_clear_of_walls(false);
+  refresh_ghosts(points_.position);
 }
 
 template <int D>
@@ -515,7 +586,7 @@ void FlowSolver<D>::regularise_positions(double dt) {
       shift[i] = displacement.value_or(Vec<D>::Zero());
       m.any = m.any || displacement.has_value();
     });
-    if (!moved.any) break;
+    if (largest(moved.any ? 1.0 : 0.0) == 0.0) break;  // on every process alike
     move_points(shift, total);
   }
   if (o.shifting > 0.0) shift_down_concentration_gradient(dt, total);
@@ -565,6 +636,7 @@ void FlowSolver<D>::move_points(std::span<const Vec<D>> shift, std::vector<Vec<D
     wall_distance_[i] -= shift[i].norm();
   });
   keep_clear_of_walls(false);
+  refresh_ghosts(points_.position);
 }
 
 template <int D>
@@ -574,8 +646,19 @@ void FlowSolver<D>::rebuild_neighbours() {
   // From the wall nodes' own search, dry ones included: the last wet node below a free surface
   // stands for its own share of the wall, not for the dry part above it too.
   update_node_weights();
-  deactivate_dry_wall_nodes<D>(points_, neighbours_);
-  deactivate_wall_nodes_beyond_fluid<D>(points_, neighbours_, options_.free_surface);
+  if (!exchange_) {
+    deactivate_dry_wall_nodes<D>(points_, neighbours_);
+    deactivate_wall_nodes_beyond_fluid<D>(points_, neighbours_, options_.free_surface);
+    return;
+  }
+  // Each owner decides for its nodes; the ghosts' lists end at the halo's edge.
+  if (!node_weight_.empty()) refresh_ghosts(node_weight_);
+  deactivate_dry_wall_nodes<D>(points_, neighbours_, owned_);
+  refresh_ghost_types();
+  remove_pairs_with_inactive<D>(points_, neighbours_);
+  deactivate_wall_nodes_beyond_fluid<D>(points_, neighbours_, options_.free_surface, owned_);
+  refresh_ghost_types();
+  remove_pairs_with_inactive<D>(points_, neighbours_);
 }
 
 template <int D>
@@ -591,6 +674,7 @@ void FlowSolver<D>::classify_points() {
   ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators, node_weight_);
   detect_free_surface<D>(points_, neighbours_, ops_, options_.free_surface);
   mark_sparse_points_as_surface();
+  refresh_ghost_types();
 }
 
 template <int D>
@@ -636,6 +720,7 @@ std::vector<Vec<D>> FlowSolver<D>::predict(double dt, std::vector<Vec<D>>& visco
   });
   if (o.viscous == ViscousScheme::implicit_euler && o.viscosity > 0.0)
     solve_implicit_viscosity(dt, predicted, viscous);
+  refresh_ghosts(predicted);  // the PPE's divergence of u* reads them
   return predicted;
 }
 
@@ -705,6 +790,11 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
       o.acceleration_number * std::sqrt(o.dx / std::max(o.gravity.norm(), 1e-12));
   auto data = ppe_data<D>(points_, neighbours_, ops_, predicted, viscous, po);
   if (o.surface_offset) set_surface_pressure(data.dirichlet);
+  if (exchange_) {
+    lap(t, m.seconds.ppe_assembly);
+    project_distributed(data, m);
+    return;
+  }
   const int passes = o.release_wall_tension ? 2 : 1;
   auto system = assemble_poisson<D>(points_, neighbours_, ops_, data, o.dx);
   lap(t, m.seconds.ppe_assembly);
@@ -748,6 +838,83 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
 }
 
 template <int D>
+void FlowSolver<D>::project_distributed(PoissonData& data, StepMonitor& m) {
+  // Each process assembles the rows of its unknowns of the one system (ldd/ppe.hpp), with
+  // global column numbers, and the solver runs over the processes. As in one piece, wall nodes
+  // in tension are released and the system solved again on the same preconditioner, their rows
+  // made x = 0 (fix_at_zero).
+  auto t = Clock::now();
+  refresh_ghosts(data.dirichlet);  // a row's Dirichlet neighbours may be ghosts
+  demote_weak_neumann_rows<D>(points_, neighbours_, ops_, options_.dx, owned_);
+  refresh_ghost_types();
+  // Global unknown numbers: this process's unknowns in point order, after the lower ranks'.
+  const auto is_unknown = [this](Index i) {
+    return points_.type[i] == PointType::interior || points_.type[i] == PointType::wall;
+  };
+  std::int64_t mine = 0;
+  for (Index i = 0; i < owned_; ++i) mine += is_unknown(i);
+  const std::int64_t first = exchange_->sum_before(mine), unknowns = total(mine);
+  std::vector<double> number(static_cast<std::size_t>(points_.size()), -1.0);
+  for (Index i = 0, next = 0; i < owned_; ++i)
+    if (is_unknown(i)) number[i] = static_cast<double>(first + next++);
+  refresh_ghosts(number);
+  const std::vector<std::int64_t> global(number.begin(), number.end());
+  auto rows = assemble_poisson_rows<D>(points_, neighbours_, ops_, data, owned_, global, unknowns);
+  lap(t, m.seconds.ppe_assembly);
+
+  const int passes = options_.release_wall_tension ? 2 : 1;
+  std::vector<Index> released;
+  for (int pass = 0; pass < passes; ++pass) {
+    const auto count = static_cast<Index>(rows.point_of.size());
+    Eigen::VectorXd x(count);
+    for (Index r = 0; r < count; ++r) x[r] = points_.pressure[rows.point_of[r]];
+    // reuse_for and setup agree over the processes: every process takes the same branch.
+    bool ready = pass > 0 && distributed_ppe_->reuse_for(rows.matrix);
+    if (!ready) ready = distributed_ppe_->setup(rows.matrix);
+    const auto stats = ready ? distributed_ppe_->solve(rows.rhs, x) : linsolve::SolveStats{};
+    lap(t, m.seconds.ppe_solve);
+    m.ppe_iterations += stats.iterations;
+    m.ppe_residual = stats.residual;
+    m.ppe_converged = ready && stats.converged;
+    m.ppe_failure = ready ? stats.failure : distributed_ppe_->setup_failure();
+    m.ppe_passes = pass + 1;
+    for (Index i = 0; i < owned_; ++i)
+      if (!is_unknown(i))
+        points_.pressure[i] =
+            points_.type[i] == PointType::surface || points_.type[i] == PointType::isolated
+                ? data.dirichlet[i]
+                : 0.0;  // inactive
+    if (m.ppe_converged || x.allFinite())
+      for (Index r = 0; r < count; ++r) points_.pressure[rows.point_of[r]] = x[r];
+    for (const Index i : released) points_.pressure[i] = 0.0;
+    if (!m.ppe_converged) break;
+    // No tension at walls (§0.2 item 6).
+    std::vector<Index> row_of(static_cast<std::size_t>(owned_), -1);
+    for (Index r = 0; r < count; ++r) row_of[rows.point_of[r]] = r;
+    released.clear();
+    for (Index i = 0; i < owned_; ++i)
+      if (points_.type[i] == PointType::wall && points_.pressure[i] < 0.0 && releases_tension(i)) {
+        points_.type[i] = PointType::surface;
+        points_.pressure[i] = 0.0;
+        released.push_back(i);
+      }
+    if (total(static_cast<std::int64_t>(released.size())) == 0 || pass + 1 == passes) break;
+    for (const Index i : released) {  // the row becomes x = 0; its column stays
+      const Index r = row_of[i];
+      for (linsolve::CsrMatrix::InnerIterator e(rows.matrix, r); e; ++e)
+        e.valueRef() = e.col() == global[static_cast<std::size_t>(i)] ? 1.0 : 0.0;
+      rows.rhs[r] = 0.0;
+    }
+    lap(t, m.seconds.ppe_assembly);
+  }
+  refresh_ghosts(points_.pressure);
+  refresh_ghost_types();  // nodes released
+  for (Index i = 0; i < points_.size(); ++i)
+    if (!is_fluid(points_, i) && releases_tension(i))
+      points_.pressure[i] = std::max(points_.pressure[i], 0.0);
+}
+
+template <int D>
 bool FlowSolver<D>::releases_tension(Index i) const {
   return walls_[static_cast<std::size_t>(points_.host[i].body)].releases_tension();
 }
@@ -772,6 +939,7 @@ void FlowSolver<D>::correct(double dt, std::span<const Vec<D>> predicted) {
   for_each_point(owned(), [&](Index i) {
     points_.velocity[i] = kernels::corrected_velocity(cloud, i, predicted[i], grad_p[i], scale);
   });
+  refresh_ghosts(points_.velocity);
 }
 
 template <int D>
@@ -791,6 +959,7 @@ void FlowSolver<D>::smooth_velocity(double dt, double stable_step) {
     if (const auto change = kernels::smoothing_change(cloud, i, eps, h)) smoothed[i] += *change;
   });
   points_.velocity.swap(smoothed);
+  refresh_ghosts(points_.velocity);  // the monitors' ∇u reads them
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -802,9 +971,27 @@ double FlowSolver<D>::volume_drift() const {
   fluid.reserve(static_cast<std::size_t>(points_.size()));
   for (Index i = 0; i < points_.size(); ++i)
     if (is_fluid(points_, i)) fluid.push_back(points_.position[i]);
-  const double volume = fluid_volume<D>(fluid, options_.dx, support());
+  double volume = 0.0;
+  auto fluid_points = static_cast<std::int64_t>(fluid.size());
+  if (!exchange_) {
+    volume = fluid_volume<D>(fluid, options_.dx, support());
+  } else {
+    // Each process counts the grid nodes of its region, from its fluid points and ghosts, on
+    // one grid through the lowest fluid coordinates of all (less h).
+    Vec<D> lowest = Vec<D>::Constant(std::numeric_limits<double>::max());
+    for (const auto& x : fluid) lowest = lowest.cwiseMin(x);
+    Vec<D> negated = -lowest;
+    exchange_->max({negated.data(), D});
+    const Vec<D> origin = -negated - Vec<D>::Constant(support());
+    const auto in_region = [this](const Vec<D>& x) { return exchange_->owns(x); };
+    volume = fluid_volume_share<D>(fluid, options_.dx, support(), origin, in_region);
+    exchange_->sum({&volume, 1});
+    fluid_points = 0;
+    for (Index i = 0; i < owned_; ++i) fluid_points += is_fluid(points_, i);
+    fluid_points = total(fluid_points);
+  }
   const double expected =
-      initial_volume_ * static_cast<double>(fluid.size()) / static_cast<double>(initial_fluid_);
+      initial_volume_ * static_cast<double>(fluid_points) / static_cast<double>(initial_fluid_);
   return expected > 0.0 ? volume / expected - 1.0 : 0.0;
 }
 
@@ -824,7 +1011,7 @@ void FlowSolver<D>::update_monitors(double dt, std::span<const Vec<D>> old_veloc
       active_wall_nodes += o.active_wall_nodes;
     }
   };
-  const auto totals = reduce_points(owned(), Totals{}, [&](Index i, Totals& t) {
+  auto totals = reduce_points(owned(), Totals{}, [&](Index i, Totals& t) {
     const auto type = points_.type[i];
     if (!is_fluid(points_, i)) {
       if (type != PointType::inactive) ++t.active_wall_nodes;
@@ -840,6 +1027,19 @@ void FlowSolver<D>::update_monitors(double dt, std::span<const Vec<D>> old_veloc
     if (type == PointType::interior)
       t.max_divergence = std::max(t.max_divergence, std::abs(grad[i].trace()));
   });
+  if (exchange_) {
+    std::array<double, 2> largest{totals.max_divergence, totals.max_speed};
+    std::array<std::int64_t, 4> counts{totals.fluid, totals.surface, totals.isolated,
+                                       totals.active_wall_nodes};
+    exchange_->max(largest);
+    exchange_->sum(counts);
+    totals = {largest[0],
+              largest[1],
+              static_cast<Index>(counts[0]),
+              static_cast<Index>(counts[1]),
+              static_cast<Index>(counts[2]),
+              static_cast<Index>(counts[3])};
+  }
   m.max_divergence = totals.max_divergence;
   m.max_speed = totals.max_speed;
   m.fluid = totals.fluid;
@@ -865,6 +1065,10 @@ void FlowSolver<D>::remove_escaped_points() {
   std::vector<Index> kept;
   kept.reserve(static_cast<std::size_t>(points_.size()));
   for (Index i = 0; i < points_.size(); ++i) {
+    if (i >= owned()) {  // a ghost: its owner decides
+      kept.push_back(i);
+      continue;
+    }
     bool inside = outside_.empty() || !outside_[i];
     if (inside && is_fluid(points_, i)) {
       const auto& x = points_.position[i];
@@ -876,9 +1080,12 @@ void FlowSolver<D>::remove_escaped_points() {
     }
     if (inside) kept.push_back(i);
   }
-  if (kept.size() == static_cast<std::size_t>(points_.size())) return;
-  escaped_ += points_.size() - static_cast<Index>(kept.size());
+  const auto removed = points_.size() - static_cast<Index>(kept.size());
+  escaped_ += static_cast<Index>(total(removed));
+  if (removed == 0) return;
+  owned_ -= removed;
   points_.retain(kept);
+  permute(id_, kept);
   permute(grad_u_, kept);
   permute(acceleration_, kept);
   permute(wall_distance_, kept);
@@ -896,7 +1103,7 @@ void FlowSolver<D>::check_divergence(const StepMonitor& m) const {
   // Worst points by a per-point value (largest first).
   auto worst = [&](auto value, const char* what) {
     std::vector<std::pair<double, Index>> v;
-    for (Index i = 0; i < points_.size(); ++i) {
+    for (Index i = 0; i < owned(); ++i) {
       const double x = value(i);
       if (std::isnan(x) || x > 0.0) v.emplace_back(std::isnan(x) ? 1e300 : x, i);
     }
@@ -912,9 +1119,9 @@ void FlowSolver<D>::check_divergence(const StepMonitor& m) const {
                ? 0.0
                : 1.0;
   };
-  bool finite = true;
-  for (Index i = 0; i < points_.size() && finite; ++i) finite = not_finite(i) == 0.0;
-  if (!finite) {
+  double any_not_finite = 0.0;
+  for (Index i = 0; i < owned() && any_not_finite == 0.0; ++i) any_not_finite = not_finite(i);
+  if (largest(any_not_finite) > 0.0) {  // every process throws
     r.criterion = "non-finite position, velocity or pressure";
     worst(not_finite, "non-finite");
     throw FlowDiverged(r);
@@ -934,6 +1141,163 @@ void FlowSolver<D>::check_divergence(const StepMonitor& m) const {
           "|u| [m/s]");
     throw FlowDiverged(r);
   }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Over processes
+
+namespace {
+
+/// Doubles a travelling point carries: velocity, pressure, kind, type, the wall node's normal,
+/// velocity, acceleration and host (body, element, barycentric), ∇u, |Δu/Δt|, the wall
+/// clearance bound and the velocity at the step's start.
+template <int D>
+constexpr int travelling_width = 6 * D + D* D + 7;
+
+/// Writes an Eigen vector or matrix's entries at `f` and moves past them.
+template <typename Dense>
+void put(double*& f, const Dense& v) {
+  f = std::copy_n(v.data(), v.size(), f);
+}
+
+/// Reads an Eigen vector or matrix's entries from `f` and moves past them.
+template <typename Dense>
+Dense take(const double*& f) {
+  Dense v;
+  std::copy_n(f, v.size(), v.data());
+  f += v.size();
+  return v;
+}
+
+template <int D>
+TravellingPoints<D> reordered(const TravellingPoints<D>& block, std::span<const Index> order) {
+  TravellingPoints<D> out{.width = block.width};
+  for (const Index k : order)
+    out.add(block.position[k], block.id[k], block.fields.data() + std::size_t(k) * block.width);
+  return out;
+}
+
+}  // namespace
+
+template <int D>
+TravellingPoints<D> FlowSolver<D>::travelling_owned_points() const {
+  const Index n = owned();
+  const bool in_step = pending_old_velocity_.size() == static_cast<std::size_t>(points_.size());
+  TravellingPoints<D> block{.width = travelling_width<D>};
+  block.position.assign(points_.position.begin(), points_.position.begin() + n);
+  block.id.assign(id_.begin(), id_.begin() + n);
+  block.fields.resize(static_cast<std::size_t>(n) * travelling_width<D>);
+  for_each_point(n, [&](Index i) {
+    double* f = block.fields.data() + std::size_t(i) * travelling_width<D>;
+    const auto& host = points_.host[i];
+    put(f, points_.velocity[i]);
+    *f++ = points_.pressure[i];
+    *f++ = static_cast<double>(points_.kind[i]);
+    *f++ = static_cast<double>(points_.type[i]);
+    put(f, points_.wall_normal[i]);
+    put(f, points_.wall_velocity[i]);
+    put(f, points_.wall_acceleration[i]);
+    *f++ = host.body;
+    *f++ = static_cast<double>(host.element);
+    put(f, host.barycentric);
+    put(f, grad_u_[i]);
+    *f++ = acceleration_[i];
+    *f++ = wall_distance_[i];
+    put(f, in_step ? pending_old_velocity_[i] : points_.velocity[i]);
+  });
+  return block;
+}
+
+template <int D>
+void FlowSolver<D>::append(const TravellingPoints<D>& block) {
+  HM_ASSERT(block.width == travelling_width<D>, "flow: {} fields a travelling point, not {}",
+            block.width, travelling_width<D>);
+  for (std::size_t k = 0; k < block.size(); ++k) {
+    const double* f = block.fields.data() + k * travelling_width<D>;
+    const auto velocity = take<Vec<D>>(f);
+    const double pressure = *f++;
+    const auto kind = static_cast<PointKind>(*f++);
+    const auto type = static_cast<PointType>(*f++);
+    const auto normal = take<Vec<D>>(f);
+    const auto wall_velocity = take<Vec<D>>(f);
+    const auto wall_acceleration = take<Vec<D>>(f);
+    WallHost<D> host;
+    host.body = static_cast<int>(*f++);
+    host.element = static_cast<Index>(*f++);
+    host.barycentric = take<Vec<D>>(f);
+    const Index i = kind == PointKind::fluid
+                        ? points_.add_fluid(block.position[k], velocity)
+                        : points_.add_wall_node(block.position[k], normal, host);
+    points_.velocity[i] = velocity;
+    points_.pressure[i] = pressure;
+    points_.type[i] = type;
+    points_.wall_velocity[i] = wall_velocity;
+    points_.wall_acceleration[i] = wall_acceleration;
+    grad_u_.push_back(take<Mat<D>>(f));
+    acceleration_.push_back(*f++);
+    wall_distance_.push_back(*f++);
+    pending_old_velocity_.push_back(take<Vec<D>>(f));
+    id_.push_back(block.id[k]);
+  }
+}
+
+template <int D>
+void FlowSolver<D>::redistribute(bool sort) {
+  auto mine = travelling_owned_points();
+  last_migration_ = exchange_->migrate(mine);
+  if (sort) mine = reordered(mine, spatial_order<D>(mine.position, support()));
+  const auto ghosts = exchange_->gather_ghosts(mine, support());
+  const bool in_step = pending_old_velocity_.size() == static_cast<std::size_t>(points_.size());
+  points_ = PointSet<D>{};
+  grad_u_.clear();
+  acceleration_.clear();
+  wall_distance_.clear();
+  pending_old_velocity_.clear();
+  id_.clear();
+  append(mine);
+  owned_ = points_.size();
+  append(ghosts);
+  if (!in_step) pending_old_velocity_.clear();
+  outside_.clear();  // within a step, before the migration
+  step_start_.clear();
+  neighbours_ = Neighbours{};  // stale indices
+}
+
+template <int D>
+void FlowSolver<D>::refresh_ghosts(std::vector<double>& field) const {
+  if (!exchange_) return;
+  const auto ghost = exchange_->refresh({field.data(), static_cast<std::size_t>(owned_)}, 1);
+  std::copy(ghost.begin(), ghost.end(), field.begin() + owned_);
+}
+
+template <int D>
+void FlowSolver<D>::refresh_ghosts(std::vector<Vec<D>>& field) const {
+  if (!exchange_) return;
+  static_assert(sizeof(Vec<D>) == D * sizeof(double), "a Vec<D> is D doubles");
+  auto* values = reinterpret_cast<double*>(field.data());
+  const auto ghost = exchange_->refresh({values, static_cast<std::size_t>(owned_) * D}, D);
+  std::copy(ghost.begin(), ghost.end(), values + static_cast<std::size_t>(owned_) * D);
+}
+
+template <int D>
+void FlowSolver<D>::refresh_ghost_types() {
+  if (!exchange_) return;
+  std::vector<double> type(static_cast<std::size_t>(points_.size()));
+  for (Index i = 0; i < owned_; ++i) type[i] = static_cast<double>(points_.type[i]);
+  refresh_ghosts(type);
+  for (Index i = owned_; i < points_.size(); ++i) points_.type[i] = static_cast<PointType>(type[i]);
+}
+
+template <int D>
+double FlowSolver<D>::largest(double value) const {
+  if (exchange_) exchange_->max({&value, 1});
+  return value;
+}
+
+template <int D>
+std::int64_t FlowSolver<D>::total(std::int64_t value) const {
+  if (exchange_) exchange_->sum(std::span<std::int64_t>(&value, 1));
+  return value;
 }
 
 template class FlowSolver<2>;

@@ -36,11 +36,13 @@
 // SI units: m, s, kg/m³, Pa (gauge), m²/s.
 #include <array>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "core/errors.hpp"
+#include "ldd/exchange.hpp"
 #include "ldd/free_surface.hpp"
 #include "ldd/kernels.hpp"
 #include "ldd/ppe.hpp"
@@ -197,8 +199,15 @@ class FlowSolver {
   /// are at their time-t0 positions. Wall nodes are sampled on every wall (thin walls on both
   /// sides). Runs the set-up part of a step (neighbours, operators, free surface, and a PPE with
   /// Δt = the first step) so that pressure is available at t0. InputError on bad options.
+  /// With `processes` (ldd/exchange.hpp), the run is one of several processes that each build
+  /// the same flow from the same scene: each then keeps and computes the points of its region,
+  /// with ghosts of the others' within h; every call below is then collective. A distributed
+  /// flow has prescribed walls: the structure's calls (refresh_wall_kinematics,
+  /// acceleration_pressure, state, restore) are for one process; the implicit viscosity and the
+  /// PPE observer too (InputError / not called).
   FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>> fluid,
-             std::span<const Vec<D>> velocity, const FlowOptions<D>& options, double t0 = 0.0);
+             std::span<const Vec<D>> velocity, const FlowOptions<D>& options, double t0 = 0.0,
+             std::shared_ptr<PointExchange<D>> processes = nullptr);
 
   /// The walls; move them to t^{n+1} (WallMesh::move) before step().
   std::vector<WallMesh<D>>& walls() { return walls_; }
@@ -238,7 +247,19 @@ class FlowSolver {
   /// Whether a step is between begin_step and finish_step.
   bool in_step() const { return pending_dt_ > 0.0; }
 
+  /// The points this process holds: [0, owned()) its own, the rest ghost copies of other
+  /// processes' points (none in a flow of one process).
   const PointSet<D>& points() const { return points_; }
+  /// The points this process computes, [0, owned()) (ldd/point_loop.hpp): all of them in a flow
+  /// of one process.
+  Index owned() const { return exchange_ ? owned_ : points_.size(); }
+  /// Each point's id, unique over the run and kept for its life: the fluid points numbered in
+  /// the order of the constructor's `fluid`, then the wall nodes.
+  const std::vector<std::int64_t>& ids() const { return id_; }
+  /// The processes of a distributed flow (null: one process).
+  const PointExchange<D>* processes() const { return exchange_.get(); }
+  /// What the last step's migration did (a distributed flow).
+  const Migration& last_migration() const { return last_migration_; }
   const Neighbours& neighbours() const { return neighbours_; }
   const Operators<D>& operators() const { return ops_; }
   const FlowOptions<D>& options() const { return options_; }
@@ -259,9 +280,6 @@ class FlowSolver {
 
  private:
   void advect(double dt);
-  /// The points this process computes, [0, owned()) (ldd/point_loop.hpp): all of them, a run
-  /// being one process.
-  Index owned() const { return points_.size(); }
   /// What the per-point kernels read (ldd/kernels.hpp).
   kernels::Cloud<D> cloud() const { return {points_, neighbours_, ops_}; }
   void keep_clear_of_walls(bool all_points);
@@ -292,11 +310,30 @@ class FlowSolver {
   std::pair<Vec<D>, Vec<D>> wall_box() const;  ///< the walls' present bounding box [m]
   void check_divergence(const StepMonitor& m) const;
 
+  // A distributed flow (exchange_ set); each a no-op in one process.
+  /// Owned points to the owners of the regions they are in (regions redrawn when the load
+  /// drifted), optionally sorted spatially, and the new ghosts; the neighbour lists go.
+  void redistribute(bool sort);
+  TravellingPoints<D> travelling_owned_points() const;
+  void append(const TravellingPoints<D>& block);
+  /// The ghosts' entries of a per-point field from their owners.
+  void refresh_ghosts(std::vector<double>& field) const;
+  void refresh_ghosts(std::vector<Vec<D>>& field) const;
+  void refresh_ghost_types();
+  double largest(double value) const;  ///< over the processes
+  std::int64_t total(std::int64_t value) const;
+  void project_distributed(PoissonData& data, StepMonitor& m);
+
   FlowOptions<D> options_;
   std::vector<WallMesh<D>> walls_;
   PoissonSolver ppe_solver_;               ///< keeps its setup while the matrix does not change
   linsolve::SystemSolver viscous_solver_;  ///< the implicit viscosity's (§1.10)
   PpeObserver ppe_observer_;
+  std::shared_ptr<PointExchange<D>> exchange_;  ///< null: one process
+  std::unique_ptr<linsolve::LinearSolver> distributed_ppe_;
+  Index owned_ = 0;               ///< distributed: points [0, owned_) are this process's
+  std::vector<std::int64_t> id_;  ///< per point, see ids()
+  Migration last_migration_;
   PointSet<D> points_;
   Neighbours neighbours_;
   Operators<D> ops_;

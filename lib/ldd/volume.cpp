@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <numbers>
 #include <vector>
 
@@ -16,17 +17,25 @@ double bulk_kernel_density(double dx, double h) {
   return sphere * radial * std::pow(h / dx, D);
 }
 
+namespace {
+
+/// The lowest and highest coordinates of `fluid` (not empty).
 template <int D>
-double fluid_volume(std::span<const Vec<D>> fluid, double dx, double h) {
-  if (fluid.empty()) return 0.0;
-  using Cell = Eigen::Matrix<long, D, 1>;
+std::pair<Vec<D>, Vec<D>> bounds(std::span<const Vec<D>> fluid) {
   Vec<D> lower = fluid[0], upper = fluid[0];
   for (const auto& x : fluid) {
     lower = lower.cwiseMin(x);
     upper = upper.cwiseMax(x);
   }
-  lower.array() -= h;
-  upper.array() += h;
+  return {lower, upper};
+}
+
+/// The nodes of the grid of spacing dx/2 from `lower` to `upper` where the kernel density of
+/// `fluid` reaches half its bulk value (and `counted`, when given, holds).
+template <int D>
+long nodes_inside(std::span<const Vec<D>> fluid, double dx, double h, const Vec<D>& lower,
+                  const Vec<D>& upper, const std::function<bool(const Vec<D>&)>* counted) {
+  using Cell = Eigen::Matrix<long, D, 1>;
   // Points binned in cells of size h (counting sort on the linear cell index).
   Cell cells;
   for (int a = 0; a < D; ++a)
@@ -55,7 +64,8 @@ double fluid_volume(std::span<const Vec<D>> fluid, double dx, double h) {
   // cell of it.
   const double s = 0.5 * dx, threshold = 0.5 * bulk_kernel_density<D>(dx, h);
   long inside = 0;
-#pragma omp parallel for schedule(dynamic, 16) reduction(+ : inside)
+  // `counted` (a process's region: Zoltan's point assignment) is not known to be thread-safe.
+#pragma omp parallel for schedule(dynamic, 16) reduction(+ : inside) if (counted == nullptr)
   for (long k = 0; k < total_cells; ++k) {
     Cell c;
     long rest = k;
@@ -104,18 +114,47 @@ double fluid_volume(std::span<const Vec<D>> fluid, double dx, double h) {
           density += wendland_c2(std::sqrt(r2) / h);
           if (density >= threshold) break;
         }
-        inside += density >= threshold;
+        inside += density >= threshold && (counted == nullptr || (*counted)(x));
       }
       int a = 0;
       while (a < D && ++m[a] >= last[a]) m[a] = first[a], ++a;
       if (a == D) break;
     }
   }
-  return static_cast<double>(inside) * std::pow(s, D);
+  return inside;
+}
+
+}  // namespace
+
+template <int D>
+double fluid_volume(std::span<const Vec<D>> fluid, double dx, double h) {
+  if (fluid.empty()) return 0.0;
+  auto [lower, upper] = bounds(fluid);
+  lower.array() -= h;
+  upper.array() += h;
+  const double inside = static_cast<double>(nodes_inside<D>(fluid, dx, h, lower, upper, nullptr));
+  return inside * std::pow(0.5 * dx, D);
+}
+
+template <int D>
+double fluid_volume_share(std::span<const Vec<D>> fluid, double dx, double h, const Vec<D>& origin,
+                          const std::function<bool(const Vec<D>&)>& counted) {
+  if (fluid.empty()) return 0.0;
+  auto [lower, upper] = bounds(fluid);
+  const double s = 0.5 * dx;
+  for (int a = 0; a < D; ++a)  // on the grid from `origin`
+    lower[a] = origin[a] + std::floor((lower[a] - h - origin[a]) / s) * s;
+  upper.array() += h;
+  const double inside = static_cast<double>(nodes_inside<D>(fluid, dx, h, lower, upper, &counted));
+  return inside * std::pow(s, D);
 }
 
 template double fluid_volume<2>(std::span<const Vec<2>>, double, double);
 template double fluid_volume<3>(std::span<const Vec<3>>, double, double);
+template double fluid_volume_share<2>(std::span<const Vec<2>>, double, double, const Vec<2>&,
+                                      const std::function<bool(const Vec<2>&)>&);
+template double fluid_volume_share<3>(std::span<const Vec<3>>, double, double, const Vec<3>&,
+                                      const std::function<bool(const Vec<3>&)>&);
 template double bulk_kernel_density<2>(double, double);
 template double bulk_kernel_density<3>(double, double);
 

@@ -8,6 +8,7 @@
 // 6.4 % by 0.3 dx, 1.9 % in 3-D (h = 2.5 dx; tests/ldd/test_volume.cpp) — while this volume stays
 // within 0.4 % (2-D) and 0.5 % (3-D) of the regular lattice's. The jittered 2-D tank at rest read
 // 0.82 % of drift from the number density, 0.03 % from this volume.
+#include <functional>
 #include <span>
 
 #include "ldd/common.hpp"
@@ -16,6 +17,14 @@ namespace hm::ldd {
 
 template <int D>
 double fluid_volume(std::span<const Vec<D>> fluid, double dx, double h);
+
+/// One process's share of fluid_volume over processes: `fluid` holds its fluid points and the
+/// other processes' within h of its region; only the grid nodes `counted` selects (those in its
+/// region) count, on the grid of spacing dx/2 through `origin` (the same on every process, e.g.
+/// the lowest fluid coordinates of them all less h). The shares add up to the whole volume.
+template <int D>
+double fluid_volume_share(std::span<const Vec<D>> fluid, double dx, double h, const Vec<D>& origin,
+                          const std::function<bool(const Vec<D>&)>& counted);
 
 /// ρ̃₀ = ∫ W(|r|/h) dV / dx^D, the bulk value of the kernel density of a cloud of spacing dx.
 template <int D>

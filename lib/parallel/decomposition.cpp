@@ -156,20 +156,18 @@ Processes processes() {
   return p;
 }
 
+bool started_by_mpirun() {
+  for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_SIZE"})
+    if (std::getenv(variable) != nullptr) return true;
+  return false;
+}
+
 void abort_run(const std::string& what, int exit_code) {
   const Processes p = processes();
   std::fprintf(stderr, "hydromodal: process %d of %d failed: %s\n", p.rank, p.count, what.c_str());
   std::fflush(stderr);
   MPI_Abort(MPI_COMM_WORLD, exit_code);
   std::_Exit(exit_code);  // MPI_Abort does not return; this is for the compiler
-}
-
-template <int D>
-void PointBlock<D>::add(const Eigen::Matrix<double, D, 1>& x, std::int64_t point_id,
-                        const double* point_fields) {
-  position.push_back(x);
-  id.push_back(point_id);
-  for (int k = 0; k < width; ++k) fields.push_back(point_fields[k]);
 }
 
 template <int D>
@@ -337,7 +335,7 @@ Halo<D> Decomposition<D>::halo(const PointBlock<D>& points, double radius) const
 }
 
 template <int D>
-std::vector<double> Halo<D>::refresh(const std::vector<double>& owned_fields, int width) const {
+std::vector<double> Halo<D>::refresh(std::span<const double> owned_fields, int width) const {
   std::vector<double> send(send_points_.size() * static_cast<std::size_t>(width));
   for (std::size_t k = 0; k < send_points_.size(); ++k)
     for (int f = 0; f < width; ++f)
@@ -368,8 +366,6 @@ double Decomposition<D>::imbalance(const PointBlock<D>& points) const {
   return mean > 0.0 ? static_cast<double>(largest) / mean : 1.0;
 }
 
-template struct PointBlock<2>;
-template struct PointBlock<3>;
 template PointBlock<2> gather_on_first<2>(const PointBlock<2>&);
 template PointBlock<3> gather_on_first<3>(const PointBlock<3>&);
 template class Halo<2>;

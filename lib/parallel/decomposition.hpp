@@ -13,10 +13,13 @@
 // nothing is lost or duplicated (MigrationReport counts what moved). Positions in metres.
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
+
+#include "ldd/exchange.hpp"
 
 namespace hm::parallel {
 
@@ -29,24 +32,20 @@ struct Processes {
 };
 Processes processes();
 
+/// Whether this process was started by mpirun (OpenMPI's or a PMI launcher's environment), so
+/// that a stage run without it never touches MPI.
+bool started_by_mpirun();
+
 /// Ends the whole run from one process: writes "hydromodal: process R of N failed: <what>" to
 /// stderr and aborts every process of the run with `exit_code` (MPI_Abort), so that the others,
 /// waiting in a collective call for this one, do not hang. For a failure that only some
 /// processes see (an exception on one rank); never returns.
 [[noreturn]] void abort_run(const std::string& what, int exit_code);
 
-/// This process's points: positions, global ids and `width` doubles of fields per point.
+/// This process's points: positions, global ids and `width` doubles of fields per point (the
+/// flow's travelling points, ldd/exchange.hpp).
 template <int D>
-struct PointBlock {
-  int width = 0;
-  std::vector<Eigen::Matrix<double, D, 1>> position;  ///< [m]
-  std::vector<std::int64_t> id;                       ///< unique over the run
-  std::vector<double> fields;                         ///< size × width, point by point
-
-  std::size_t size() const { return position.size(); }
-  void add(const Eigen::Matrix<double, D, 1>& x, std::int64_t point_id,
-           const double* point_fields = nullptr);
-};
+using PointBlock = ldd::TravellingPoints<D>;
 
 /// Every process's points on process 0, ordered by id (ids, positions, fields), for output
 /// written once; an empty block on the others. Collective.
@@ -69,7 +68,7 @@ class Halo {
   /// Sends the owned points' `owned_fields` (`width` doubles a point, in the order of the
   /// points the halo was built on) again; returns the ghosts' (`width` a ghost, ghost order).
   /// Collective.
-  std::vector<double> refresh(const std::vector<double>& owned_fields, int width) const;
+  std::vector<double> refresh(std::span<const double> owned_fields, int width) const;
   /// Ghost points sent and received by this process (for the cost model).
   long sent() const { return static_cast<long>(send_points_.size()); }
   long received() const { return static_cast<long>(ghosts_.size()); }

@@ -3,6 +3,7 @@
 // column H × 2H, H = 0.3 m, in a tank 4H long; 3-D 0.15 m wide) and the system its own
 // projection assembles a few steps after release (FlowSolver::observe_ppe).
 #include <cmath>
+#include <memory>
 
 #include "flow_cases.hpp"
 #include "linsolve/linear_solver.hpp"
@@ -10,9 +11,11 @@
 
 namespace hm::ldd::test {
 
-/// The dam break at spacing dx [m] with the PPE solver options `ppe`.
+/// The dam break at spacing dx [m] with the PPE solver options `ppe`; over the processes of
+/// `processes` when given (FlowSolver's constructor).
 template <int D>
-FlowSolver<D> dam_break(double dx, const SolverOptions& ppe) {
+FlowSolver<D> dam_break(double dx, const SolverOptions& ppe,
+                        std::shared_ptr<PointExchange<D>> processes = nullptr) {
   Vec<D> size, column;
   size[0] = 1.2;
   column[0] = 0.6;
@@ -33,7 +36,7 @@ FlowSolver<D> dam_break(double dx, const SolverOptions& ppe) {
   o.gravity[D - 1] = -9.81;
   o.ppe = ppe;
   auto x = seed_box<D>(fluid, dx, walls);
-  return FlowSolver<D>(std::move(walls), x, {}, o);
+  return FlowSolver<D>(std::move(walls), x, {}, o, 0.0, std::move(processes));
 }
 
 /// The same with the flow's PPE options but for the preconditioner and the reuse policy.

@@ -13,6 +13,12 @@
 // it (velocity and pressure), the points migrated, the ghost points and halo bytes the largest
 // process receives (id, position and 3 fields a point), against its owned points.
 //   BM_Decomposition/<D>/<points>    3-D 200 k and 1 M points
+// And the flow itself over the processes (FlowSolver with parallel::FlowExchange; one process:
+// the flow without an exchange, as fsi-simulate runs it): the dam break of ppe_cases.hpp
+// (BoomerAMG), a few steps to warm up, then `steps` steps; per step the wall seconds, each
+// phase's seconds (the slowest process's), PPE iterations, points migrated, and the largest
+// process's owned points and ghosts; particle-steps/s over the fluid points.
+//   BM_DistributedFlow/<D>/<points>  2-D 20 k, 3-D 200 k fluid points
 #include <benchmark/benchmark.h>
 #include <mpi.h>
 
@@ -21,11 +27,13 @@
 #include <cmath>
 #include <map>
 #include <memory>
+#include <string>
 #include <type_traits>
 
 #include "dealt_points.hpp"
 #include "linsolve/petsc_solver.hpp"
 #include "parallel/decomposition.hpp"
+#include "parallel/flow_exchange.hpp"
 #include "ppe_cases.hpp"
 
 namespace hm::ldd {
@@ -144,6 +152,54 @@ void BM_Decomposition(benchmark::State& state) {
   state.counters["refresh_s"] = refresh_s / steps;
 }
 
+template <int D>
+void BM_DistributedFlow(benchmark::State& state) {
+  const auto processes = parallel::processes();
+  const double points = static_cast<double>(state.range(0));
+  const int warm_up = 3, steps = static_cast<int>(state.range(1));
+  SolverOptions ppe = FlowOptions<D>{}.ppe;
+  ppe.preconditioner = Preconditioner::boomeramg;
+  std::shared_ptr<PointExchange<D>> exchange;
+  if (processes.count > 1) exchange = std::make_shared<parallel::FlowExchange<D>>();
+  auto flow = test::dam_break<D>(test::spacing_for<D>(points), ppe, exchange);
+  for (int s = 0; s < warm_up; ++s) flow.step(flow.stable_dt(0.0).first);
+  PhaseSeconds phases;
+  long iterations = 0, migrated = 0, ghosts = 0, owned = 0;
+  double seconds = 0.0;
+  for (auto _ : state) {
+    MPI_Barrier(MPI_COMM_WORLD);
+    const auto start = std::chrono::steady_clock::now();
+    for (int s = 0; s < steps; ++s) {
+      const auto m = flow.step(flow.stable_dt(0.0).first);
+      phases += m.seconds;
+      iterations += m.ppe_iterations;
+      migrated += flow.last_migration().sent;
+      ghosts = std::max(ghosts, largest(static_cast<long>(flow.points().size() - flow.owned())));
+      owned = std::max(owned, largest(static_cast<long>(flow.owned())));
+    }
+    MPI_Barrier(MPI_COMM_WORLD);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  }
+  long fluid = 0;
+  for (Index i = 0; i < flow.owned(); ++i) fluid += flow.points().kind[i] == PointKind::fluid;
+  MPI_Allreduce(MPI_IN_PLACE, &fluid, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  state.counters["processes"] = processes.count;
+  state.counters["fluid_points"] = static_cast<double>(fluid);
+  state.counters["s_per_step"] = seconds / steps;
+  state.counters["particle_steps_per_s"] = static_cast<double>(fluid) * steps / seconds;
+  state.counters["ppe_iterations_per_step"] = static_cast<double>(iterations) / steps;
+  state.counters["migrated_per_step"] = static_cast<double>(migrated) / steps;
+  state.counters["owned_largest"] = static_cast<double>(owned);
+  state.counters["ghosts_largest"] = static_cast<double>(ghosts);
+  const auto v = phases.values();
+  const char* names[] = {"advect",    "pbd",          "neighbours", "operators", "free_surface",
+                         "predictor", "ppe_assembly", "ppe_solve",  "corrector"};
+  for (std::size_t k = 0; k < PhaseSeconds::count; ++k)
+    state.counters[std::string(names[k]) + "_s"] = largest(v[k]) / steps;
+}
+
+BENCHMARK(BM_DistributedFlow<2>)->Args({20000, 20})->Iterations(1)->UseRealTime();
+BENCHMARK(BM_DistributedFlow<3>)->Args({200000, 5})->Iterations(1)->UseRealTime();
 BENCHMARK(BM_DistributedPpe<2>)->Arg(40000)->Arg(160000)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_DistributedPpe<3>)->Arg(27000)->Arg(125000)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_Decomposition<3>)->Arg(200000)->Arg(1000000)->Iterations(1)->UseRealTime();

@@ -1,0 +1,43 @@
+#pragma once
+// fsi-simulate over MPI processes (`mpirun -np N fsi-simulate …`): a flow with prescribed walls
+// whose points are spread over the processes (ldd/exchange.hpp, parallel::FlowExchange), the
+// output written once by process 0 from the points gathered there. A stage run without mpirun
+// (or by mpirun -np 1) never touches MPI and runs as it always has.
+#include <memory>
+
+#include "ldd/exchange.hpp"
+#include "ldd/flow.hpp"
+
+namespace hm::driver {
+
+/// What a distributed run cannot do yet, refused before any work (InputError).
+struct DistributedRequest {
+  bool structure = false;            ///< a [structure] coupled with the flow
+  bool restart = false;              ///< --restart
+  double checkpoint_interval = 0.0;  ///< time.checkpoint_interval [s]
+};
+
+/// The processes the flow runs over; null for one process. InputError when started by mpirun
+/// with several processes for a run that is not distributed yet, or in a build without MPI
+/// (lib/parallel).
+template <int D>
+std::shared_ptr<ldd::PointExchange<D>> flow_processes(const DistributedRequest& request);
+
+/// Whether this process writes the run's output: the only one, or process 0 of several.
+template <int D>
+bool writes_output(const ldd::PointExchange<D>* processes) {
+  return processes == nullptr || processes->rank() == 0;
+}
+
+/// Ends a distributed run from this process on `failure` (an exception perhaps no other process
+/// sees): its message on stderr and every process aborted with the failure's exit code
+/// (parallel::abort_run), so that none waits for ever in a collective call. Never returns.
+[[noreturn]] void abort_processes(const std::exception& failure);
+
+/// Every process's owned points on process 0, in id order, with what probes and snapshots read
+/// (position, velocity, pressure, kind, type, wall normal and host); empty on the others.
+/// Collective; `flow` must be distributed.
+template <int D>
+ldd::PointSet<D> gather_points(const ldd::FlowSolver<D>& flow);
+
+}  // namespace hm::driver

@@ -1,0 +1,97 @@
+#!/usr/bin/env python3
+"""check_processes.py ONE MANY SCENE [--until-impact]: a flow run over several processes against
+the same run as one process. Both folders hold results.h5 and probes.csv of the same scene.
+Every sample of MANY must be at the time of ONE's (to 10x the tolerance relative: the steps
+follow the largest speed) and every value within 10x the
+PPE tolerance (the scene's solver.ppe_tolerance, default 1e-6) of the column's largest
+magnitude; a value missing in one (no fluid at the probe) must be missing in the other. With
+--until-impact, only the samples before the impact are held to that — the first sample at which
+a pressure probe of ONE sees fluid — as the flow after a violent impact is chaotic: the time at
+which the runs part and their largest differences after it are printed. Exit 1 with the failed
+columns otherwise."""
+import csv
+import math
+import subprocess
+import sys
+import tomllib
+
+
+def read_probes(folder):
+    with open(f"{folder}/probes.csv", newline="") as f:
+        rows = list(csv.reader(f))
+    return rows[0], [[float(x) for x in row] for row in rows[1:]]
+
+
+def run_status(folder):
+    out = subprocess.run(["h5dump", "-a", "/run_status", f"{folder}/results.h5"],
+                         capture_output=True, text=True, check=True).stdout
+    return "completed" if '"completed"' in out else out
+
+
+def impact_time(header, rows):
+    """The first sample time at which a pressure column holds a value (the fluid arrived)."""
+    pressure = [c for c in range(1, len(header)) if "[Pa]" in header[c]]
+    for row in rows:
+        if any(not math.isnan(row[c]) for c in pressure):
+            return row[0]
+    return math.inf
+
+
+def main():
+    one, many, scene = sys.argv[1:4]
+    until_impact = "--until-impact" in sys.argv[4:]
+    with open(scene, "rb") as f:
+        tolerance = tomllib.load(f).get("solver", {}).get("ppe_tolerance", 1e-6)
+    header, a = read_probes(one)
+    header_many, b = read_probes(many)
+    failures = []
+    if header != header_many:
+        failures.append(f"columns differ: {header} against {header_many}")
+    end = impact_time(header, a) if until_impact else math.inf
+    held = [(ra, rb) for ra, rb in zip(a, b) if ra[0] < end]
+    if len(a) != len(b) and not until_impact:
+        failures.append(f"{len(a)} samples against {len(b)}")
+    for ra, rb in held:
+        if abs(ra[0] - rb[0]) > 10 * tolerance * max(ra[0], 1e-3):  # Δt from u_max
+            failures.append(f"sample at t = {ra[0]} s against t = {rb[0]} s")
+            break
+    status = run_status(many)
+    if status != "completed":
+        failures.append(f"the run over processes did not complete: {status}")
+    if until_impact:
+        print(f"compared up to the impact at t = {end:.6g} s ({len(held)} of {len(a)} samples)")
+    parted = math.inf  # the first time a column leaves its bound
+    for c in range(1, len(header)):
+        scale = max((abs(r[c]) for r in a if not math.isnan(r[c])), default=0.0)
+        bound = 10 * tolerance * scale
+        worst = 0.0
+        for ra, rb in held:
+            if math.isnan(ra[c]) != math.isnan(rb[c]):
+                failures.append(f"{header[c]} at t = {ra[0]} s: missing in one run only")
+                break
+            if not math.isnan(ra[c]):
+                worst = max(worst, abs(ra[c] - rb[c]))
+        after = 0.0
+        for ra, rb in zip(a, b):
+            if math.isnan(ra[c]) or math.isnan(rb[c]):
+                continue
+            if abs(ra[c] - rb[c]) > bound:
+                parted = min(parted, ra[0])
+            if ra[0] >= end:
+                after = max(after, abs(ra[c] - rb[c]))
+        print(f"{header[c]}: largest difference {worst:.3g} (bound {bound:.3g}, "
+              f"{worst / scale if scale else 0:.3g} of the largest value {scale:.4g})"
+              + (f"; after the impact {after:.3g} ({after / scale if scale else 0:.3g})"
+                 if until_impact else ""))
+        if worst > bound:
+            failures.append(f"{header[c]} differs by {worst:.3g} > {bound:.3g}")
+    if until_impact:
+        print(f"the runs part at t = {parted:.6g} s" if parted < math.inf else
+              "the runs never part")
+    for f in failures:
+        print("FAIL:", f)
+    sys.exit(1 if failures else 0)
+
+
+if __name__ == "__main__":
+    main()
