@@ -136,6 +136,7 @@ void write_points(io::ArtefactWriter& w, const ldd::FlowState<D>& s) {
   w.write("/points/velocity_gradient", gradient.data(), Dims{n, D * D});
   w.write("/points/wall_distance", s.wall_distance);
   w.write("/points/acceleration", s.acceleration);
+  w.write("/points/id", s.id);
   w.write("/neighbours/offsets", s.neighbours.offsets);
   w.write("/neighbours/indices", integers(s.neighbours.indices, [](ldd::Index i) { return i; }));
 }
@@ -250,11 +251,10 @@ std::filesystem::path checkpoint_path(const std::filesystem::path& folder, doubl
 
 template <int D>
 void write_checkpoint(const std::filesystem::path& path, const std::string& parameters,
-                      const std::vector<io::InputRecord>& inputs, const ldd::FlowSolver<D>& flow,
+                      const std::vector<io::InputRecord>& inputs, const ldd::FlowState<D>& s,
                       std::span<const coupling::FlexibleBody<D>> bodies,
                       const coupling::RunResult& run) {
   std::filesystem::create_directories(path.parent_path());
-  const ldd::FlowState<D> s = flow.state();
   io::ArtefactWriter w(path, io::checkpoint_schema(), "fsi-simulate", parameters, inputs);
   write_points<D>(w, s);
   write_walls<D>(w, s);
@@ -310,6 +310,8 @@ ldd::FlowState<D> read_flow(const io::ArtefactReader& r) {
       for (int b = 0; b < D; ++b) g(a, b) = gradient[k + static_cast<std::size_t>(D * a + b)];
     s.velocity_gradient.push_back(g);
   }
+  if (r.has("/points/id"))  // checkpoints before ids: the points in id order
+    for (auto id : r.read_index_values("/points/id")) s.id.push_back(id);
   s.wall_distance = r.read_values("/points/wall_distance");
   s.acceleration = r.read_values("/points/acceleration");
   s.neighbours.offsets = r.read_index_values("/neighbours/offsets");
@@ -465,11 +467,11 @@ Checkpoint<D> read_checkpoint(const std::filesystem::path& path, const std::stri
 }
 
 template void write_checkpoint<2>(const std::filesystem::path&, const std::string&,
-                                  const std::vector<io::InputRecord>&, const ldd::FlowSolver<2>&,
+                                  const std::vector<io::InputRecord>&, const ldd::FlowState<2>&,
                                   std::span<const coupling::FlexibleBody<2>>,
                                   const coupling::RunResult&);
 template void write_checkpoint<3>(const std::filesystem::path&, const std::string&,
-                                  const std::vector<io::InputRecord>&, const ldd::FlowSolver<3>&,
+                                  const std::vector<io::InputRecord>&, const ldd::FlowState<3>&,
                                   std::span<const coupling::FlexibleBody<3>>,
                                   const coupling::RunResult&);
 template Checkpoint<2> read_checkpoint<2>(const std::filesystem::path&, const std::string&,

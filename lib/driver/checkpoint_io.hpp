@@ -20,10 +20,11 @@ struct Checkpoint {
   coupling::RunResult run;
 };
 
-/// Writes the checkpoint of `flow`, `bodies` and `run` to `path` (atomically).
+/// Writes the checkpoint of the flow's state `flow` (FlowSolver::state), `bodies` and `run` to
+/// `path` (atomically).
 template <int D>
 void write_checkpoint(const std::filesystem::path& path, const std::string& parameters,
-                      const std::vector<io::InputRecord>& inputs, const ldd::FlowSolver<D>& flow,
+                      const std::vector<io::InputRecord>& inputs, const ldd::FlowState<D>& flow,
                       std::span<const coupling::FlexibleBody<D>> bodies,
                       const coupling::RunResult& run);
 

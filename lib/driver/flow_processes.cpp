@@ -32,9 +32,6 @@ std::shared_ptr<ldd::PointExchange<D>> flow_processes(const DistributedRequest& 
   const int count = parallel::processes().count;
   if (count == 1) return nullptr;
   refuse(request.structure, "a flow coupled with a [structure]", count);
-  refuse(request.restart, "a restart (--restart)", count);
-  refuse(request.checkpoint_interval > 0.0, "writing checkpoints (time.checkpoint_interval > 0)",
-         count);
   return std::make_shared<parallel::FlowExchange<D>>();
 #else
   (void)request;

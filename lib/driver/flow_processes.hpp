@@ -12,9 +12,7 @@ namespace hm::driver {
 
 /// What a distributed run cannot do yet, refused before any work (InputError).
 struct DistributedRequest {
-  bool structure = false;            ///< a [structure] coupled with the flow
-  bool restart = false;              ///< --restart
-  double checkpoint_interval = 0.0;  ///< time.checkpoint_interval [s]
+  bool structure = false;  ///< a [structure] coupled with the flow
 };
 
 /// The processes the flow runs over; null for one process. InputError when started by mpirun

@@ -601,9 +601,7 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     setup = flow_setup<D>(scene, io::ArtefactReader(inputs.mesh, io::mesh_schema()), structure);
   }
   const auto& o = setup.options;
-  const auto processes = flow_processes<D>({.structure = coupled,
-                                            .restart = !inputs.restart.empty(),
-                                            .checkpoint_interval = setup.time.checkpoint_interval});
+  const auto processes = flow_processes<D>({.structure = coupled});
   const bool writes = writes_output(processes.get());
   if (!writes) spdlog::set_level(spdlog::level::warn);  // one log: process 0's
   spdlog::info(
@@ -696,7 +694,7 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
       csv->write_row(checkpoint->run.probes.time[k], checkpoint->run.probes.rows[k]);
   std::optional<ldd::SnapshotWriter<D>> snapshots;
   if (writes) snapshots.emplace(folder / "snapshots", "flow");
-  if (checkpoint)
+  if (checkpoint && snapshots)
     snapshots->resume(static_cast<std::size_t>(checkpoint->run.snapshots), solver.walls(),
                       wall_names, body_fields<D>(solver, bodies));
   std::optional<ldd::SnapshotWriter<D>> failed;
@@ -736,7 +734,9 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
                          std::span<const coupling::FlexibleBody<D>> flexible,
                          const coupling::RunResult& so_far) {
     const auto path = checkpoint_path(folder, s.time());
-    write_checkpoint<D>(path, parameters, records, s, flexible, so_far);
+    const ldd::FlowState<D> state = s.state();  // distributed: gathered on process 0
+    if (!writes) return;
+    write_checkpoint<D>(path, parameters, records, state, flexible, so_far);
     spdlog::info("{}: checkpoint at t = {} s: {}", stage_name, s.time(), path.string());
   };
 

@@ -567,7 +567,8 @@ const SchemaSpec& checkpoint_schema() {
       schema::checkpoint,
       1,
       "The state of an fsi-simulate run at a checkpoint time (time.checkpoint_interval), from "
-      "which `fsi-simulate --restart` continues exactly: every point with its fields, the last "
+      "which `fsi-simulate --restart` continues exactly (a run over processes, or a restart on "
+      "another number of them: to the PPE tolerance): every point with its fields and id, the last "
       "neighbour lists, the walls' vertex kinematics, the flexible bodies' modal state and the "
       "run so far (monitors, probe rows, modal histories). Root attributes: time [s], step, "
       "start_time [s], escaped, initial_fluid, initial_volume, last_volume_drift, "
@@ -590,7 +591,11 @@ const SchemaSpec& checkpoint_schema() {
           f64("/points/velocity_gradient", {"n_points", "dim2"}, "1/s", "grad u, row-major"),
           f64("/points/wall_distance", {"n_points"}, "m", "lower bound of the wall clearance"),
           f64("/points/acceleration", {"n_points"}, "m/s^2", "|du/dt| of the last step"),
-          i64("/neighbours/offsets", {"n_offsets"}, "list of i: indices[offsets[i], offsets[i+1])"),
+          optional(i64("/points/id", {"n_points"},
+                       "each point's id over the run (checkpoints before it: the points' order)")),
+          i64("/neighbours/offsets", {"n_offsets"},
+              "list of i: indices[offsets[i], offsets[i+1]); a distributed run's checkpoint "
+              "holds none (offsets {0}): the restart rebuilds them"),
           i64("/neighbours/indices", {"n_pairs"}, "neighbour point indices"),
           i64("/walls/offsets", {"n_wall_offsets"}, "vertices of wall w: rows offsets[w] ... "),
           f64("/walls/x", {"n_wall_vertices", "dim"}, "m", "wall vertex positions"),

@@ -28,6 +28,9 @@ struct TravellingPoints {
   std::vector<Vec<D>> position;  ///< [m]
   std::vector<std::int64_t> id;
   std::vector<double> fields;  ///< size × width, point by point
+  /// The work a point stands for, when the regions are drawn (empty: 1 each). Not carried by a
+  /// migration: the owner sets it before the next.
+  std::vector<float> weight;
 
   std::size_t size() const { return position.size(); }
   void add(const Vec<D>& x, std::int64_t point_id, const double* point_fields = nullptr) {
@@ -70,6 +73,8 @@ class PointExchange {
   virtual void sum(std::span<std::int64_t> values) const = 0;
   /// The sum of `value` over the processes of lower rank (0 on the first). Collective.
   virtual std::int64_t sum_before(std::int64_t value) const = 0;
+  /// Every process's `owned` on process 0, in id order; empty on the others. Collective.
+  virtual TravellingPoints<D> gather(const TravellingPoints<D>& owned) const = 0;
   /// Whether x is in this process's region (after the last migrate).
   virtual bool owns(const Vec<D>& x) const = 0;
 };

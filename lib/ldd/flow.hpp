@@ -179,7 +179,10 @@ class FlowDiverged : public NumericalError {
 template <int D>
 struct FlowState {
   PointSet<D> points;
-  Neighbours neighbours;  ///< the last step's lists (PBD of the next step starts from them)
+  std::vector<std::int64_t> id;  ///< per point (FlowSolver::ids); empty: the points' order
+  /// The last step's lists (PBD of the next step starts from them); none (offsets {0}) in the
+  /// state of a distributed flow, whose lists were its processes': restore rebuilds them.
+  Neighbours neighbours;
   std::vector<Mat<D>> velocity_gradient;
   std::vector<double> wall_distance, acceleration;
   /// Wall vertex positions [m], velocities [m/s], accelerations [m/s²], one list per wall.
@@ -239,10 +242,12 @@ class FlowSolver {
   /// does not change, see predict). Uses the current neighbours and point types: call between
   /// begin_step and finish_step, or after a step.
   std::vector<double> acceleration_pressure(std::span<const Vec<D>> acceleration);
-  /// The state between steps (see FlowState); not within a step.
+  /// The state between steps (see FlowState); not within a step. Distributed: collective, every
+  /// process's points on process 0 (in id order), an empty state on the others.
   FlowState<D> state() const;
   /// Continues from `state` (taken from a solver of the same scene: same walls and options).
-  /// InputError when the walls do not match.
+  /// InputError when the walls do not match. Distributed: collective, every process given the
+  /// whole state (of a run on any number of processes); each keeps its region's points.
   void restore(FlowState<D> state);
   /// Whether a step is between begin_step and finish_step.
   bool in_step() const { return pending_dt_ > 0.0; }
@@ -314,6 +319,8 @@ class FlowSolver {
   /// Owned points to the owners of the regions they are in (regions redrawn when the load
   /// drifted), optionally sorted spatially, and the new ghosts; the neighbour lists go.
   void redistribute(bool sort);
+  /// All the points held (the set-up, a restore): this process keeps every count-th.
+  void keep_every_processes_share();
   TravellingPoints<D> travelling_owned_points() const;
   void append(const TravellingPoints<D>& block);
   /// The ghosts' entries of a per-point field from their owners.

@@ -148,12 +148,13 @@ Index deactivate_wall_nodes_beyond_fluid(PointSet<D>& pts, Neighbours& nb,
 
 template <int D>
 FreeSurfaceReport detect_free_surface(PointSet<D>& pts, const Neighbours& nb,
-                                      const Operators<D>& ops, const FreeSurfaceOptions& opt) {
+                                      const Operators<D>& ops, const FreeSurfaceOptions& opt,
+                                      Index owned) {
   HM_ASSERT(opt.reference_density > 0.0, "free surface: reference number density {} must be > 0",
             opt.reference_density);
   const double cos_cone = std::cos(opt.cone_degrees * std::numbers::pi / 180.0);
   const double cos_wall_cone = std::cos(opt.wall_cone_degrees * std::numbers::pi / 180.0);
-  const Index n = pts.size();
+  const Index n = owned < 0 ? pts.size() : owned;
   FreeSurfaceReport rep;
   Index candidates = 0, surface = 0, contact = 0, isolated = 0;
 #pragma omp parallel for schedule(dynamic, 256) reduction(+ : candidates, surface, contact, isolated)
@@ -219,8 +220,10 @@ template Index deactivate_wall_nodes_beyond_fluid<3>(PointSet<3>&, Neighbours&,
 template double lattice_number_density<2>(double, double);
 template double lattice_number_density<3>(double, double);
 template FreeSurfaceReport detect_free_surface<2>(PointSet<2>&, const Neighbours&,
-                                                  const Operators<2>&, const FreeSurfaceOptions&);
+                                                  const Operators<2>&, const FreeSurfaceOptions&,
+                                                  Index);
 template FreeSurfaceReport detect_free_surface<3>(PointSet<3>&, const Neighbours&,
-                                                  const Operators<3>&, const FreeSurfaceOptions&);
+                                                  const Operators<3>&, const FreeSurfaceOptions&,
+                                                  Index);
 
 }  // namespace hm::ldd

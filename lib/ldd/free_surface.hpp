@@ -67,9 +67,12 @@ Index deactivate_wall_nodes_beyond_fluid(PointSet<D>& points, Neighbours& neighb
                                          const FreeSurfaceOptions& options, Index owned = -1);
 
 /// Sets points.type of every fluid point (interior / surface / isolated) and of active wall
-/// nodes (wall / surface), using the previous types for the hysteresis.
+/// nodes (wall / surface), using the previous types for the hysteresis. Only the points
+/// [0, owned) are decided (all with owned < 0): a ghost's neighbourhood ends at the halo's
+/// edge, where it would pass for free surface, and its owner decides for it.
 template <int D>
 FreeSurfaceReport detect_free_surface(PointSet<D>& points, const Neighbours& neighbours,
-                                      const Operators<D>& ops, const FreeSurfaceOptions& options);
+                                      const Operators<D>& ops, const FreeSurfaceOptions& options,
+                                      Index owned = -1);
 
 }  // namespace hm::ldd

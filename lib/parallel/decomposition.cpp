@@ -51,10 +51,12 @@ int count_points(void* data, int* error) {
 }
 
 template <int D>
-void list_points(void* data, int, int, ZOLTAN_ID_PTR global, ZOLTAN_ID_PTR local, int, float*,
-                 int* error) {
+void list_points(void* data, int, int, ZOLTAN_ID_PTR global, ZOLTAN_ID_PTR local,
+                 int weight_dimension, float* weights, int* error) {
   const auto& points = *static_cast<const PointBlock<D>*>(data);
   for (std::size_t i = 0; i < points.size(); ++i) {
+    if (weight_dimension > 0)
+      weights[i] = points.weight.size() == points.size() ? points.weight[i] : 1.0f;
     const auto id = static_cast<std::uint64_t>(points.id[i]);
     global[2 * i] = static_cast<ZOLTAN_ID_TYPE>(id & 0xffffffffu);
     global[2 * i + 1] = static_cast<ZOLTAN_ID_TYPE>(id >> 32);
@@ -229,7 +231,7 @@ Decomposition<D>::Decomposition(PointBlock<D>& points) : zoltan_(std::make_uniqu
   if (zoltan_->zz == nullptr) throw std::runtime_error("Zoltan_Create failed");
   Zoltan_Struct* zz = zoltan_->zz;
   // Recursive coordinate bisection with its cuts kept (for owner_of and the ghosts' boxes),
-  // each cut midway between the points on its two sides, each point weighing the same; the
+  // each cut midway between the points on its two sides, each point weighing its weight; the
   // points are then sent by region (balance), so Zoltan returns no lists.
   for (const auto& [name, value] : {std::pair{"DEBUG_LEVEL", "0"},
                                     {"LB_METHOD", "RCB"},
@@ -237,7 +239,7 @@ Decomposition<D>::Decomposition(PointBlock<D>& points) : zoltan_(std::make_uniqu
                                     {"RETURN_LISTS", "NONE"},
                                     {"NUM_GID_ENTRIES", "2"},
                                     {"NUM_LID_ENTRIES", "1"},
-                                    {"OBJ_WEIGHT_DIM", "0"},
+                                    {"OBJ_WEIGHT_DIM", "1"},
                                     {"RCB_RECTILINEAR_BLOCKS", "0"},
                                     {"AVERAGE_CUTS", "1"},
                                     {"IMBALANCE_TOL", "1.01"}})
@@ -358,12 +360,14 @@ std::vector<double> Halo<D>::refresh(std::span<const double> owned_fields, int w
 
 template <int D>
 double Decomposition<D>::imbalance(const PointBlock<D>& points) const {
-  const long mine = static_cast<long>(points.size());
-  long largest = 0, total = 0;
-  MPI_Allreduce(&mine, &largest, 1, MPI_LONG, MPI_MAX, MPI_COMM_WORLD);
-  MPI_Allreduce(&mine, &total, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
-  const double mean = static_cast<double>(total) / zoltan_->processes.count;
-  return mean > 0.0 ? static_cast<double>(largest) / mean : 1.0;
+  double mine = static_cast<double>(points.size());
+  if (points.weight.size() == points.size())
+    mine = std::accumulate(points.weight.begin(), points.weight.end(), 0.0);
+  double largest = 0, total = 0;
+  MPI_Allreduce(&mine, &largest, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
+  MPI_Allreduce(&mine, &total, 1, MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD);
+  const double mean = total / zoltan_->processes.count;
+  return mean > 0.0 ? largest / mean : 1.0;
 }
 
 template PointBlock<2> gather_on_first<2>(const PointBlock<2>&);

@@ -84,13 +84,14 @@ class Halo {
 template <int D>
 class Decomposition {
  public:
-  /// Regions for `points` (every process's, balanced by count), and the points sent to them.
+  /// Regions for `points` (every process's, balanced by their weights: PointBlock::weight, 1
+  /// each without), and the points sent to them.
   explicit Decomposition(PointBlock<D>& points);
   ~Decomposition();
   Decomposition(const Decomposition&) = delete;
   Decomposition& operator=(const Decomposition&) = delete;
 
-  /// New regions of equal shares of the points, and the points sent to their owners.
+  /// New regions of equal shares of the points (by weight), and the points sent to their owners.
   MigrationReport balance(PointBlock<D>& points);
   /// Each point outside this process's region sent to the owner of the region it is in.
   MigrationReport migrate(PointBlock<D>& points);
@@ -102,7 +103,8 @@ class Decomposition {
   Halo<D> halo(const PointBlock<D>& points, double radius) const;
   /// The process whose region holds x.
   int owner_of(const Eigen::Matrix<double, D, 1>& x) const;
-  /// The largest process's share against the mean (1 = even) over every process.
+  /// The largest process's share against the mean (1 = even) over every process, by the points'
+  /// weights where they have them, else by count.
   double imbalance(const PointBlock<D>& points) const;
 
  private:

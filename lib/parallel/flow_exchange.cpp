@@ -71,6 +71,11 @@ std::int64_t FlowExchange<D>::sum_before(std::int64_t value) const {
 }
 
 template <int D>
+PointBlock<D> FlowExchange<D>::gather(const PointBlock<D>& owned) const {
+  return gather_on_first(owned);
+}
+
+template <int D>
 bool FlowExchange<D>::owns(const ldd::Vec<D>& x) const {
   return decomposition_->owner_of(x) == processes_.rank;
 }

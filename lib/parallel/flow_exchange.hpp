@@ -28,6 +28,7 @@ class FlowExchange final : public ldd::PointExchange<D> {
   void sum(std::span<double> values) const override;
   void sum(std::span<std::int64_t> values) const override;
   std::int64_t sum_before(std::int64_t value) const override;
+  PointBlock<D> gather(const PointBlock<D>& owned) const override;
   bool owns(const ldd::Vec<D>& x) const override;
 
  private:
