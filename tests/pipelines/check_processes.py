@@ -3,8 +3,8 @@
 the same run as one process. Both folders hold results.h5 and probes.csv of the same scene.
 Every sample of MANY must be at the time of ONE's (to 10x the tolerance relative: the steps
 follow the largest speed) and every value within 10x the
-PPE tolerance (the scene's solver.ppe_tolerance, default 1e-6) of the column's largest
-magnitude; a value missing in one (no fluid at the probe) must be missing in the other. With
+PPE tolerance (the scene's solver.ppe_tolerance, default 1e-6) of the probe's largest
+magnitude (a force probe's: of its vector); a value missing in one (no fluid at the probe) must be missing in the other. With
 --until-impact, only the samples before the impact are held to that — the first sample at which
 a pressure probe of ONE sees fluid — as the flow after a violent impact is chaotic: the time at
 which the runs part and their largest differences after it are printed. Exit 1 with the failed
@@ -26,6 +26,19 @@ def run_status(folder):
     out = subprocess.run(["h5dump", "-a", "/run_status", f"{folder}/results.h5"],
                          capture_output=True, text=True, check=True).stdout
     return "completed" if '"completed"' in out else out
+
+
+def probe_scale(header, rows, column):
+    """The largest magnitude of the probe a column belongs to: of the vector of a force probe's
+    components (a component that vanishes by symmetry is held to the force's scale), else of the
+    column's values."""
+    probe = header[column].rsplit(".", 1)[0]
+    group = [c for c in range(1, len(header)) if header[c].rsplit(".", 1)[0] == probe]
+    largest = 0.0
+    for row in rows:
+        values = [row[c] for c in group if not math.isnan(row[c])]
+        largest = max(largest, math.sqrt(sum(v * v for v in values)))
+    return largest
 
 
 def impact_time(header, rows):
@@ -62,7 +75,7 @@ def main():
         print(f"compared up to the impact at t = {end:.6g} s ({len(held)} of {len(a)} samples)")
     parted = math.inf  # the first time a column leaves its bound
     for c in range(1, len(header)):
-        scale = max((abs(r[c]) for r in a if not math.isnan(r[c])), default=0.0)
+        scale = probe_scale(header, a, c)
         bound = 10 * tolerance * scale
         worst = 0.0
         for ra, rb in held:
