@@ -362,43 +362,52 @@ PoissonRows assemble_poisson_rows(const PointSet<D>& pts, const Neighbours& nb,
   for (Index i = 0; i < owned; ++i)
     if (global_unknown[static_cast<std::size_t>(i)] >= 0) rows.point_of.push_back(i);
   const auto m = static_cast<Index>(rows.point_of.size());
-  rows.rhs.resize(m);
-  std::vector<int> outer{0};
-  std::vector<int> columns;
-  std::vector<double> values, coeff;
-  std::vector<std::pair<std::int64_t, double>> row;
+  const auto is_unknown = [&](Index j) { return global_unknown[static_cast<std::size_t>(j)] >= 0; };
+  // Row sizes (the diagonal and the unknown neighbours), then each row written in place.
+  std::vector<int> outer(static_cast<std::size_t>(m) + 1, 0);
+#pragma omp parallel for schedule(static)
   for (Index r = 0; r < m; ++r) {
-    const Index i = rows.point_of[r];
-    const bool wall = pts.type[i] == PointType::wall;
-    const auto nbr = nb.of(i);
-    coeff.resize(nbr.size());
-    if (wall)
-      neumann_row<D>(pts, nb, ops, i, coeff.data());
-    else
-      std::copy_n(ops.laplacian.data() + nb.offsets[i], nbr.size(), coeff.data());
-    double diag = 0.0, rhs = wall ? data.neumann[i] : data.source[i];
-    for (double c : coeff) diag -= c;
-    row.assign(1, {global_unknown[static_cast<std::size_t>(i)], 1.0});
-    for (std::size_t k = 0; k < nbr.size(); ++k) {
-      const Index j = nbr[k];
-      const std::int64_t u = global_unknown[static_cast<std::size_t>(j)];
-      if (u >= 0)
-        row.emplace_back(u, coeff[k] / diag);
-      else if (dirichlet_type(pts.type[j]) && !data.dirichlet.empty())
-        rhs -= coeff[k] * data.dirichlet[j];
-    }
-    std::sort(row.begin(), row.end());
-    for (const auto& [column, value] : row) {
-      columns.push_back(static_cast<int>(column));
-      values.push_back(value);
-    }
-    outer.push_back(static_cast<int>(columns.size()));
-    rows.rhs[r] = rhs / diag;
+    const auto nbr = nb.of(rows.point_of[r]);
+    outer[r + 1] = 1 + static_cast<int>(std::count_if(nbr.begin(), nbr.end(), is_unknown));
   }
-  const Eigen::Map<const linsolve::CsrMatrix> view(m, static_cast<Eigen::Index>(global_unknowns),
-                                                   static_cast<Eigen::Index>(values.size()),
-                                                   outer.data(), columns.data(), values.data());
-  rows.matrix = view;
+  std::partial_sum(outer.begin(), outer.end(), outer.begin());
+  auto& a = rows.matrix;
+  a.resize(m, static_cast<Eigen::Index>(global_unknowns));
+  a.resizeNonZeros(outer.back());
+  std::copy(outer.begin(), outer.end(), a.outerIndexPtr());
+  rows.rhs.resize(m);
+#pragma omp parallel
+  {
+    std::vector<double> coeff;
+    std::vector<std::pair<std::int64_t, double>> row;
+#pragma omp for schedule(dynamic, 256)
+    for (Index r = 0; r < m; ++r) {
+      const Index i = rows.point_of[r];
+      const bool wall = pts.type[i] == PointType::wall;
+      const auto nbr = nb.of(i);
+      coeff.resize(nbr.size());
+      if (wall)
+        neumann_row<D>(pts, nb, ops, i, coeff.data());
+      else
+        std::copy_n(ops.laplacian.data() + nb.offsets[i], nbr.size(), coeff.data());
+      double diag = 0.0, rhs = wall ? data.neumann[i] : data.source[i];
+      for (double c : coeff) diag -= c;
+      row.assign(1, {global_unknown[static_cast<std::size_t>(i)], 1.0});
+      for (std::size_t k = 0; k < nbr.size(); ++k) {
+        const Index j = nbr[k];
+        if (is_unknown(j))
+          row.emplace_back(global_unknown[static_cast<std::size_t>(j)], coeff[k] / diag);
+        else if (dirichlet_type(pts.type[j]) && !data.dirichlet.empty())
+          rhs -= coeff[k] * data.dirichlet[j];
+      }
+      std::sort(row.begin(), row.end());
+      for (std::size_t e = 0; e < row.size(); ++e) {
+        a.innerIndexPtr()[outer[r] + e] = static_cast<int>(row[e].first);
+        a.valuePtr()[outer[r] + e] = row[e].second;
+      }
+      rows.rhs[r] = rhs / diag;
+    }
+  }
   return rows;
 }
 
