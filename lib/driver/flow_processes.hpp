@@ -2,7 +2,8 @@
 // fsi-simulate over MPI processes (`mpirun -np N fsi-simulate …`): a flow with prescribed walls
 // whose points are spread over the processes (ldd/exchange.hpp, parallel::FlowExchange), the
 // output written once by process 0 from the points gathered there. A stage run without mpirun
-// (or by mpirun -np 1) never touches MPI and runs as it always has.
+// (or by mpirun -np 1) never touches MPI and runs as it always has. The points written come
+// from ldd::FlowSolver::output_points.
 #include <memory>
 
 #include "ldd/exchange.hpp"
@@ -31,11 +32,5 @@ bool writes_output(const ldd::PointExchange<D>* processes) {
 /// sees): its message on stderr and every process aborted with the failure's exit code
 /// (parallel::abort_run), so that none waits for ever in a collective call. Never returns.
 [[noreturn]] void abort_processes(const std::exception& failure);
-
-/// Every process's owned points on process 0, in id order, with what probes and snapshots read
-/// (position, velocity, pressure, kind, type, wall normal and host); empty on the others.
-/// Collective; `flow` must be distributed.
-template <int D>
-ldd::PointSet<D> gather_points(const ldd::FlowSolver<D>& flow);
 
 }  // namespace hm::driver

@@ -683,12 +683,10 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     for (int a = 0; a < D; ++a) columns.push_back(p.name + axes[static_cast<std::size_t>(a)]);
   }
   std::optional<io::ProbeCsvWriter> csv;
-  if (!writes) {
-  } else if (!columns.empty()) {
+  if (writes && !columns.empty())
     csv.emplace(folder / "probes.csv", columns);
-  } else {
+  else if (writes)
     std::filesystem::remove(folder / "probes.csv");
-  }
   if (csv && checkpoint)  // the rows up to the checkpoint, as the interrupted run wrote them
     for (std::size_t k = 0; k < checkpoint->run.probes.time.size(); ++k)
       csv->write_row(checkpoint->run.probes.time[k], checkpoint->run.probes.rows[k]);
@@ -704,7 +702,7 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   if (!columns.empty()) {
     sinks.evaluate_probes = [&](const ldd::FlowSolver<D>& s) {
       if (processes) {  // from the points gathered on process 0, which writes them
-        const auto points = gather_points<D>(s);
+        const auto points = s.output_points();
         if (!writes) return std::vector<double>(columns.size(), coupling::probe_missing_value);
         return coupling::evaluate_probes<D>(points, s.walls(), s.dx(), setup.probes);
       }
@@ -721,7 +719,7 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   }
   sinks.snapshot = [&](const ldd::FlowSolver<D>& s, coupling::SnapshotKind kind) {
     std::optional<ldd::PointSet<D>> gathered;
-    if (processes) gathered = gather_points<D>(s);
+    if (processes) gathered = s.output_points();
     if (!writes) return;
     if (kind == coupling::SnapshotKind::diverged && !failed)
       failed.emplace(folder / "snapshots", "diverged");

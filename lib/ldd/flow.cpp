@@ -289,15 +289,13 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
   wall_distance_.assign(n, -1.0);  // unknown: checked below
   resort();
   keep_clear_of_walls(true);
-  std::vector<Vec<D>> initial;
-  for (Index i = 0; i < points_.size(); ++i)
-    if (is_fluid(points_, i)) initial.push_back(points_.position[i]);
-  initial_fluid_ = static_cast<Index>(initial.size());
-  initial_volume_ = fluid_volume<D>(initial, o.dx, h);
   if (exchange_) {
     keep_every_processes_share();
     redistribute(/*sort=*/true);
   }
+  const auto [volume, fluid_points] = measured_volume();
+  initial_volume_ = volume;
+  initial_fluid_ = static_cast<Index>(fluid_points);
   rebuild_neighbours();
   classify_points();
 
@@ -318,10 +316,8 @@ template <int D>
 FlowState<D> FlowSolver<D>::state() const {
   HM_ASSERT(!in_step(), "flow: state() within step {}", step_ + 1);
   FlowState<D> s;
-  if (exchange_) {  // every process's points on process 0, in id order; no neighbour lists
-    std::vector<Vec<D>> old_velocity;
-    unpack<D>(exchange_->gather(travelling_owned_points()),
-              {s.points, s.velocity_gradient, s.acceleration, s.wall_distance, old_velocity, s.id});
+  if (exchange_) {  // no neighbour lists: they were the processes'
+    gather_on_first(s);
     s.neighbours.offsets.assign(1, 0);
   } else {
     s.points = points_;
@@ -1066,6 +1062,14 @@ void FlowSolver<D>::smooth_velocity(double dt, double stable_step) {
 
 template <int D>
 double FlowSolver<D>::volume_drift() const {
+  const auto [volume, fluid_points] = measured_volume();
+  const double expected =
+      initial_volume_ * static_cast<double>(fluid_points) / static_cast<double>(initial_fluid_);
+  return expected > 0.0 ? volume / expected - 1.0 : 0.0;
+}
+
+template <int D>
+std::pair<double, std::int64_t> FlowSolver<D>::measured_volume() const {
   std::vector<Vec<D>> fluid;
   fluid.reserve(static_cast<std::size_t>(points_.size()));
   for (Index i = 0; i < points_.size(); ++i)
@@ -1089,9 +1093,7 @@ double FlowSolver<D>::volume_drift() const {
     for (Index i = 0; i < owned_; ++i) fluid_points += is_fluid(points_, i);
     fluid_points = total(fluid_points);
   }
-  const double expected =
-      initial_volume_ * static_cast<double>(fluid_points) / static_cast<double>(initial_fluid_);
-  return expected > 0.0 ? volume / expected - 1.0 : 0.0;
+  return {volume, fluid_points};
 }
 
 template <int D>
@@ -1274,6 +1276,21 @@ TravellingPoints<D> FlowSolver<D>::travelling_owned_points() const {
     put(f, in_step ? pending_old_velocity_[i] : points_.velocity[i]);
   });
   return block;
+}
+
+template <int D>
+void FlowSolver<D>::gather_on_first(FlowState<D>& s) const {
+  std::vector<Vec<D>> old_velocity;
+  unpack<D>(exchange_->gather(travelling_owned_points()),
+            {s.points, s.velocity_gradient, s.acceleration, s.wall_distance, old_velocity, s.id});
+}
+
+template <int D>
+PointSet<D> FlowSolver<D>::output_points() const {
+  if (!exchange_) return points_;
+  FlowState<D> s;
+  gather_on_first(s);
+  return std::move(s.points);
 }
 
 template <int D>

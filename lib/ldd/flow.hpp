@@ -263,6 +263,9 @@ class FlowSolver {
   const std::vector<std::int64_t>& ids() const { return id_; }
   /// The processes of a distributed flow (null: one process).
   const PointExchange<D>* processes() const { return exchange_.get(); }
+  /// The points to write: a distributed flow's, every process's own on process 0 in id order
+  /// (none on the others; collective), a flow's of one process, its own.
+  PointSet<D> output_points() const;
   /// What the last step's migration did (a distributed flow).
   const Migration& last_migration() const { return last_migration_; }
   const Neighbours& neighbours() const { return neighbours_; }
@@ -302,6 +305,8 @@ class FlowSolver {
   void solve_implicit_viscosity(double dt, std::vector<Vec<D>>& predicted,
                                 const std::vector<Vec<D>>& viscous);
   double volume_drift() const;
+  /// The volume the fluid fills [m^D] (ldd/volume.hpp) and the fluid points, over every process.
+  std::pair<double, std::int64_t> measured_volume() const;
   void set_surface_pressure(std::vector<double>& dirichlet) const;
   bool releases_tension(Index wall_node) const;  ///< its wall's releases_tension()
   void project(double dt, std::span<const Vec<D>> predicted, std::span<const Vec<D>> viscous,
@@ -322,6 +327,8 @@ class FlowSolver {
   /// All the points held (the set-up, a restore): this process keeps every count-th.
   void keep_every_processes_share();
   TravellingPoints<D> travelling_owned_points() const;
+  /// Every process's points with their per-point state into `s` on process 0, in id order.
+  void gather_on_first(FlowState<D>& s) const;
   void append(const TravellingPoints<D>& block);
   /// The ghosts' entries of a per-point field from their owners.
   void refresh_ghosts(std::vector<double>& field) const;
