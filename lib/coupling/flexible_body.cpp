@@ -102,9 +102,10 @@ template <int D>
 double FlexibleBody<D>::peak_pressure(const ldd::FlowSolver<D>& flow) const {
   const auto& points = flow.points();
   double peak = 0.0;
-  for (ldd::Index i = 0; i < points.size(); ++i)
+  for (ldd::Index i = 0; i < flow.owned(); ++i)
     if (points.kind[i] == ldd::PointKind::wall && points.host[i].body == wall_)
       peak = std::max(peak, points.pressure[i]);
+  if (const auto* processes = flow.processes()) processes->max(std::span(&peak, 1));
   return peak;
 }
 
@@ -191,21 +192,30 @@ void FlexibleBody<D>::place(ldd::WallMesh<D>& wall, const WallFields& fields, do
 namespace {
 
 /// The fluid's forces on the wall's vertices, in the body's frame, D per vertex [N/m in 2-D].
+/// A distributed flow: each process loads from the quadrature points of its own region, the
+/// forces summed over the processes (every process then holds the whole).
 template <int D>
 Eigen::VectorXd wall_forces(const ldd::FlowSolver<D>& flow, int wall_index, bool viscous,
                             const Eigen::Matrix<double, D, D>& rotation,
                             std::span<const double> pressure) {
   const auto& wall = flow.walls()[static_cast<std::size_t>(wall_index)];
-  auto loads = ldd::wall_pressure_loads<D>(flow.points(), wall, wall_index, flow.dx(), pressure);
+  const ldd::PointExchange<D>* processes = flow.processes();
+  ldd::QuadraturePoints<D> own_region;
+  if (processes != nullptr)
+    own_region = [processes](const ldd::Vec<D>& x) { return processes->owns(x); };
+  auto loads =
+      ldd::wall_pressure_loads<D>(flow.points(), wall, wall_index, flow.dx(), pressure, own_region);
   if (viscous && pressure.empty()) {
-    const auto shear = ldd::wall_viscous_loads<D>(
-        flow.points(), wall, flow.dx(), flow.options().density * flow.options().viscosity);
+    const auto shear =
+        ldd::wall_viscous_loads<D>(flow.points(), wall, flow.dx(),
+                                   flow.options().density * flow.options().viscosity, own_region);
     for (std::size_t k = 0; k < loads.vertex_force.size(); ++k)
       loads.vertex_force[k] += shear.vertex_force[k];
   }
   Eigen::VectorXd f(D * static_cast<Eigen::Index>(loads.vertex_force.size()));
   for (std::size_t k = 0; k < loads.vertex_force.size(); ++k)  // in the tank's (body's) frame
     f.segment<D>(static_cast<Eigen::Index>(D * k)) = rotation.transpose() * loads.vertex_force[k];
+  if (processes != nullptr) processes->sum(std::span(f.data(), static_cast<std::size_t>(f.size())));
   return f;
 }
 

@@ -13,28 +13,13 @@
 
 namespace hm::driver {
 
-namespace {
-
-void refuse(bool what, const char* text, int processes) {
-  if (what)
-    throw InputError(fmt::format(
-        "fsi-simulate: {} does not run over several processes yet (started by mpirun with {}): "
-        "run it as one process",
-        text, processes));
-}
-
-}  // namespace
-
 template <int D>
-std::shared_ptr<ldd::PointExchange<D>> flow_processes(const DistributedRequest& request) {
+std::shared_ptr<ldd::PointExchange<D>> flow_processes() {
 #ifdef HM_WITH_PARALLEL
   if (!parallel::started_by_mpirun()) return nullptr;
-  const int count = parallel::processes().count;
-  if (count == 1) return nullptr;
-  refuse(request.structure, "a flow coupled with a [structure]", count);
+  if (parallel::processes().count == 1) return nullptr;
   return std::make_shared<parallel::FlowExchange<D>>();
 #else
-  (void)request;
   for (const char* variable : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE"})
     if (const char* size = std::getenv(variable); size != nullptr && std::string(size) != "1")
       throw InputError(fmt::format(
@@ -56,7 +41,7 @@ void abort_processes(const std::exception& failure) {
 #endif
 }
 
-template std::shared_ptr<ldd::PointExchange<2>> flow_processes<2>(const DistributedRequest&);
-template std::shared_ptr<ldd::PointExchange<3>> flow_processes<3>(const DistributedRequest&);
+template std::shared_ptr<ldd::PointExchange<2>> flow_processes<2>();
+template std::shared_ptr<ldd::PointExchange<3>> flow_processes<3>();
 
 }  // namespace hm::driver

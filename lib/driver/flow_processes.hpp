@@ -1,7 +1,9 @@
 #pragma once
-// fsi-simulate over MPI processes (`mpirun -np N fsi-simulate …`): a flow with prescribed walls
-// whose points are spread over the processes (ldd/exchange.hpp, parallel::FlowExchange), the
-// output written once by process 0 from the points gathered there. A stage run without mpirun
+// fsi-simulate over MPI processes (`mpirun -np N fsi-simulate …`): a flow whose points are
+// spread over the processes (ldd/exchange.hpp, parallel::FlowExchange), the
+// output written once by process 0 from the points gathered there. A coupled structure is whole
+// on every process, each advancing it alike on the loads summed over the processes
+// (coupling/flexible_body.hpp). A stage run without mpirun
 // (or by mpirun -np 1) never touches MPI and runs as it always has. The points written come
 // from ldd::FlowSolver::output_points.
 #include <memory>
@@ -11,16 +13,10 @@
 
 namespace hm::driver {
 
-/// What a distributed run cannot do yet, refused before any work (InputError).
-struct DistributedRequest {
-  bool structure = false;  ///< a [structure] coupled with the flow
-};
-
 /// The processes the flow runs over; null for one process. InputError when started by mpirun
-/// with several processes for a run that is not distributed yet, or in a build without MPI
-/// (lib/parallel).
+/// with several processes in a build without MPI (lib/parallel).
 template <int D>
-std::shared_ptr<ldd::PointExchange<D>> flow_processes(const DistributedRequest& request);
+std::shared_ptr<ldd::PointExchange<D>> flow_processes();
 
 /// Whether this process writes the run's output: the only one, or process 0 of several.
 template <int D>

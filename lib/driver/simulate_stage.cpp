@@ -556,13 +556,14 @@ void write_coupling(io::ArtefactWriter& w, const coupling::RunResult& r,
 
 /// Snapshot fields of the flexible bodies' walls: the displacement Σ Φ y and the pressure of
 /// the wall node at each vertex (no fields for the other walls; none at all without bodies).
+/// `points`: the flow's points to write (FlowSolver::output_points).
 template <int D>
 std::vector<ldd::WallFields<D>> body_fields(const ldd::FlowSolver<D>& flow,
+                                            const ldd::PointSet<D>& points,
                                             std::span<const coupling::FlexibleBody<D>> bodies) {
   std::vector<ldd::WallFields<D>> fields;
   if (bodies.empty()) return fields;
   fields.resize(flow.walls().size());
-  const auto& points = flow.points();
   for (const auto& body : bodies) {
     const auto& wall = flow.walls()[static_cast<std::size_t>(body.wall())];
     auto& f = fields[static_cast<std::size_t>(body.wall())];
@@ -579,6 +580,13 @@ std::vector<ldd::WallFields<D>> body_fields(const ldd::FlowSolver<D>& flow,
   }
   return fields;
 }
+
+template <int D>
+std::string simulate_flow(const io::Scene& scene, const SimulateInputs& inputs,
+                          const std::filesystem::path& output, FlowSetup<D> setup,
+                          std::optional<MappedBody<D>> mapped,
+                          const std::vector<std::filesystem::path>& wall_files,
+                          std::shared_ptr<ldd::PointExchange<D>> processes);
 
 template <int D>
 void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
@@ -600,8 +608,31 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
   } else {
     setup = flow_setup<D>(scene, io::ArtefactReader(inputs.mesh, io::mesh_schema()), structure);
   }
+  const auto processes = flow_processes<D>();
+  std::string diverged;  // how the flow diverged, if it did
+  try {
+    diverged = simulate_flow<D>(scene, inputs, output, std::move(setup), std::move(mapped),
+                                wall_files, processes);
+  } catch (const std::exception& e) {
+    // A failure that one process alone may meet (its output files, its part of a step) would
+    // leave the others waiting in their next collective call: every process ends, with this
+    // one's message and exit code. A diverged flow is none: every process sees it (its
+    // criteria are reduced over them) and ends below, process 0 having written the results.
+    if (processes) abort_processes(e);
+    throw;
+  }
+  if (!diverged.empty()) numerical_error("{}", diverged);
+}
+
+/// The flow of run_flow from its set-up on (over `processes`, or one process when null): the
+/// run and its output. Returns "" or, when the flow diverged, the message to end with.
+template <int D>
+std::string simulate_flow(const io::Scene& scene, const SimulateInputs& inputs,
+                          const std::filesystem::path& output, FlowSetup<D> setup,
+                          std::optional<MappedBody<D>> mapped,
+                          const std::vector<std::filesystem::path>& wall_files,
+                          std::shared_ptr<ldd::PointExchange<D>> processes) {
   const auto& o = setup.options;
-  const auto processes = flow_processes<D>({.structure = coupled});
   const bool writes = writes_output(processes.get());
   if (!writes) spdlog::set_level(spdlog::level::warn);  // one log: process 0's
   spdlog::info(
@@ -692,21 +723,29 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
       csv->write_row(checkpoint->run.probes.time[k], checkpoint->run.probes.rows[k]);
   std::optional<ldd::SnapshotWriter<D>> snapshots;
   if (writes) snapshots.emplace(folder / "snapshots", "flow");
-  if (checkpoint && snapshots)
-    snapshots->resume(static_cast<std::size_t>(checkpoint->run.snapshots), solver.walls(),
-                      wall_names, body_fields<D>(solver, bodies));
+  if (checkpoint) {
+    std::optional<ldd::PointSet<D>> gathered;
+    if (processes) gathered = solver.output_points();  // collective
+    if (snapshots)
+      snapshots->resume(static_cast<std::size_t>(checkpoint->run.snapshots), solver.walls(),
+                        wall_names,
+                        body_fields<D>(solver, gathered ? *gathered : solver.points(), bodies));
+  }
   std::optional<ldd::SnapshotWriter<D>> failed;
   Progress progress(stage_name, setup.time.end, "s", spdlog::get_level() > spdlog::level::info);
 
   coupling::RunSinks<D> sinks;
   if (!columns.empty()) {
     sinks.evaluate_probes = [&](const ldd::FlowSolver<D>& s) {
+      std::vector<double> row;
       if (processes) {  // from the points gathered on process 0, which writes them
         const auto points = s.output_points();
         if (!writes) return std::vector<double>(columns.size(), coupling::probe_missing_value);
-        return coupling::evaluate_probes<D>(points, s.walls(), s.dx(), setup.probes);
+        row = coupling::evaluate_probes<D>(points, s.walls(), s.dx(), setup.probes);
+      } else {
+        row = coupling::evaluate_probes<D>(s, setup.probes);
       }
-      std::vector<double> row = coupling::evaluate_probes<D>(s, setup.probes);
+      // The structure is whole on every process.
       for (const SurfaceProbe& p : displacement) {
         const ldd::Vec<D> u = bodies.front().displacement(p.vertex);
         row.insert(row.end(), u.data(), u.data() + D);
@@ -724,8 +763,8 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     if (kind == coupling::SnapshotKind::diverged && !failed)
       failed.emplace(folder / "snapshots", "diverged");
     auto& writer = kind == coupling::SnapshotKind::regular ? *snapshots : *failed;
-    writer.write(s.time(), gathered ? *gathered : s.points(), s.walls(), wall_names,
-                 body_fields<D>(s, bodies));
+    const ldd::PointSet<D>& points = gathered ? *gathered : s.points();
+    writer.write(s.time(), points, s.walls(), wall_names, body_fields<D>(s, points, bodies));
   };
   sinks.progress = [&](const ldd::StepMonitor& m) { progress.update(m.time); };
   sinks.checkpoint = [&](const ldd::FlowSolver<D>& s,
@@ -738,24 +777,15 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
     spdlog::info("{}: checkpoint at t = {} s: {}", stage_name, s.time(), path.string());
   };
 
-  const coupling::RunResult r = [&] {
-    try {
-      return coupling::run<D>(solver, setup.motions, setup.time, sinks, std::span(bodies),
-                              checkpoint ? &checkpoint->run : nullptr);
-    } catch (const std::exception& e) {
-      // A failure one process alone may see must not leave the others waiting (a diverged
-      // flow is not one: every process sees it and run() returns it).
-      if (processes) abort_processes(e);
-      throw;
-    }
-  }();
+  const coupling::RunResult r =
+      coupling::run<D>(solver, setup.motions, setup.time, sinks, std::span(bodies),
+                       checkpoint ? &checkpoint->run : nullptr);
   if (csv) csv->finish();
   const bool completed = r.status == coupling::RunStatus::completed;
   if (completed) progress.finish();
-  if (!writes) {  // process 0 writes the results and reports
-    if (!completed) numerical_error("{}: the flow diverged at t = {} s", stage_name, r.end_time);
-    return;
-  }
+  if (!writes)  // process 0 writes the results and reports
+    return completed ? ""
+                     : fmt::format("{}: the flow diverged at t = {} s", stage_name, r.end_time);
 
   io::ArtefactWriter w(output, io::results_schema(), stage_name,
                        simulate_parameters(scene, inputs.mesh.empty()), records);
@@ -791,12 +821,12 @@ void run_flow(const io::Scene& scene, const SimulateInputs& inputs,
         "{}: probe(s) {} saw no fluid at any sample of the run: their columns hold missing "
         "values (nan) only (a force probe: 0 N); is the probe where the fluid goes?",
         stage_name, join(dry, ", "));
-  if (!completed)
-    numerical_error(
-        "{}: the flow diverged at t = {} s; {} keeps the run up to then (status "
-        "diverged), {} the failed state.\n{}",
-        stage_name, r.end_time, output.string(), (folder / "snapshots" / "diverged.xdmf").string(),
-        r.divergence_report);
+  if (completed) return "";
+  return fmt::format(
+      "{}: the flow diverged at t = {} s; {} keeps the run up to then (status diverged), {} the "
+      "failed state.\n{}",
+      stage_name, r.end_time, output.string(), (folder / "snapshots" / "diverged.xdmf").string(),
+      r.divergence_report);
 }
 
 // ---- structure-only runs ------------------------------------------------------------------

@@ -75,7 +75,8 @@ class PointExchange {
   virtual std::int64_t sum_before(std::int64_t value) const = 0;
   /// Every process's `owned` on process 0, in id order; empty on the others. Collective.
   virtual TravellingPoints<D> gather(const TravellingPoints<D>& owned) const = 0;
-  /// Whether x is in this process's region (after the last migrate).
+  /// Whether x is in this process's region (after the last migrate): each x in exactly one
+  /// process's region. Safe to call from several threads.
   virtual bool owns(const Vec<D>& x) const = 0;
 };
 

@@ -213,6 +213,12 @@ const SolverOptions& available_ppe_options(const SolverOptions& ppe) {
   return ppe;
 }
 
+/// Whether point i is an unknown of the PPE (its row is solved for), not Dirichlet or inactive.
+template <int D>
+bool is_unknown(const PointSet<D>& points, Index i) {
+  return points.type[i] == PointType::interior || points.type[i] == PointType::wall;
+}
+
 /// The PPE's solver in a distributed flow: PETSc's BiCGSTAB with BoomerAMG (GAMG when chosen)
 /// over the processes, the rows of each process's unknowns on it.
 std::unique_ptr<linsolve::LinearSolver> make_distributed_ppe_solver(const SolverOptions& ppe) {
@@ -525,14 +531,15 @@ void FlowSolver<D>::solve_pressure() {
 template <int D>
 void FlowSolver<D>::refresh_wall_kinematics() {
   HM_ASSERT(in_step(), "flow: refresh_wall_kinematics outside a step");
-  HM_ASSERT(!exchange_, "flow: a distributed flow has prescribed walls");
+  // Every wall is on every process: the ghost wall nodes follow theirs as the owners' do.
   update_wall_nodes<D>(points_, walls_);
   const auto& o = options_;
   const double dt = pending_dt_;
-  for (Index i = 0; i < points_.size(); ++i)
+  for (Index i = 0; i < owned(); ++i)
     if (!is_fluid(points_, i))
       pending_predicted_[i] = points_.wall_velocity[i] +
                               dt * (o.gravity + pending_viscous_[i] - points_.wall_acceleration[i]);
+  refresh_ghosts(pending_predicted_);  // the owners' viscous terms
 }
 
 template <int D>
@@ -558,7 +565,6 @@ StepMonitor FlowSolver<D>::finish_step() {
 
 template <int D>
 std::vector<double> FlowSolver<D>::acceleration_pressure(std::span<const Vec<D>> acceleration) {
-  HM_ASSERT(!exchange_, "flow: a distributed flow has prescribed walls");
   HM_ASSERT(acceleration.size() == static_cast<std::size_t>(points_.size()),
             "flow: {} accelerations for {} points", acceleration.size(), points_.size());
   const Index n = points_.size();
@@ -570,9 +576,14 @@ std::vector<double> FlowSolver<D>::acceleration_pressure(std::span<const Vec<D>>
     if (!is_fluid(points_, i))
       data.neumann[i] = -options_.density * points_.wall_normal[i].dot(acceleration[i]);
   const std::vector<PointType> types = points_.type;  // assembly may demote weak wall rows
+  std::vector<double> pressure(static_cast<std::size_t>(n), 0.0);
+  if (exchange_) {
+    solve_distributed_acceleration_pressure(data, pressure);
+    points_.type = types;  // on the ghosts too: they were the owners' before the demotion
+    return pressure;
+  }
   const auto system = assemble_poisson<D>(points_, neighbours_, ops_, data, options_.dx);
   points_.type = types;
-  std::vector<double> pressure(static_cast<std::size_t>(n), 0.0);
   const auto report = ppe_solver_.solve(system, pressure);
   if (!report.converged)
     numerical_error(
@@ -580,6 +591,27 @@ std::vector<double> FlowSolver<D>::acceleration_pressure(std::span<const Vec<D>>
         "{}: {})",
         report.iterations, report.residual, to_string(report.preconditioner), report.failure);
   return pressure;
+}
+
+template <int D>
+void FlowSolver<D>::solve_distributed_acceleration_pressure(PoissonData& data,
+                                                            std::vector<double>& pressure) {
+  // The rows of this process's unknowns from zero (Dirichlet p = 0 at the free surface), on
+  // the preconditioner of an identical matrix when there is one (every mode of an added-mass
+  // measurement and the step's own PPE share it).
+  const auto [rows, global] = assemble_distributed(data);
+  const auto count = static_cast<Index>(rows.point_of.size());
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(count);
+  const bool ready = set_up_distributed(rows.matrix);
+  const auto stats = ready ? distributed_ppe_->solve(rows.rhs, x) : linsolve::SolveStats{};
+  if (!ready || !stats.converged)
+    numerical_error(
+        "flow: the added-mass pressure solve over {} processes did not converge ({} iterations, "
+        "residual {:.3g}: {})",
+        exchange_->processes(), stats.iterations, stats.residual,
+        ready ? stats.failure : distributed_ppe_->setup_failure());
+  for (Index r = 0; r < count; ++r) pressure[rows.point_of[r]] = x[r];
+  refresh_ghosts(pressure);  // the loads' averages read the ghost wall nodes too
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -745,12 +777,14 @@ void FlowSolver<D>::rebuild_neighbours() {
     deactivate_wall_nodes_beyond_fluid<D>(points_, neighbours_, options_.free_surface);
     return;
   }
-  // Each owner decides for its nodes; the ghosts' lists end at the halo's edge.
+  // Each owner decides for its nodes; the ghosts' lists end at the halo's edge. The pairs of
+  // the nodes made inactive go once their ghosts' types have arrived (one pass each).
   if (!node_weight_.empty()) refresh_ghosts(node_weight_);
-  deactivate_dry_wall_nodes<D>(points_, neighbours_, owned_);
+  deactivate_dry_wall_nodes<D>(points_, neighbours_, owned_, InactivePairs::kept);
   refresh_ghost_types();
   remove_pairs_with_inactive<D>(points_, neighbours_);
-  deactivate_wall_nodes_beyond_fluid<D>(points_, neighbours_, options_.free_surface, owned_);
+  deactivate_wall_nodes_beyond_fluid<D>(points_, neighbours_, options_.free_surface, owned_,
+                                        InactivePairs::kept);
   refresh_ghost_types();
   remove_pairs_with_inactive<D>(points_, neighbours_);
 }
@@ -933,28 +967,47 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
 }
 
 template <int D>
+typename FlowSolver<D>::DistributedPoisson FlowSolver<D>::assemble_distributed(PoissonData& data) {
+  refresh_ghosts(data.dirichlet);  // a row's Dirichlet neighbours may be ghosts
+  demote_weak_neumann_rows<D>(points_, neighbours_, ops_, options_.dx, owned_);
+  refresh_ghost_types();
+  // Global unknown numbers: this process's unknowns in point order, after the lower ranks'.
+  std::int64_t mine = 0;
+  for (Index i = 0; i < owned_; ++i) mine += is_unknown(points_, i);
+  const std::int64_t first = exchange_->sum_before(mine), unknowns = total(mine);
+  std::vector<double> number(static_cast<std::size_t>(points_.size()), -1.0);
+  for (Index i = 0, next = 0; i < owned_; ++i)
+    if (is_unknown(points_, i)) number[i] = static_cast<double>(first + next++);
+  refresh_ghosts(number);
+  DistributedPoisson system;
+  system.global.assign(number.begin(), number.end());
+  system.rows =
+      assemble_poisson_rows<D>(points_, neighbours_, ops_, data, owned_, system.global, unknowns);
+  return system;
+}
+
+template <int D>
+bool FlowSolver<D>::set_up_distributed(const linsolve::CsrMatrix& matrix) {
+  // The matrix last set up again (the strong coupling's sub-iterations and added-mass solves of
+  // a step): its preconditioner serves, as in one piece (linsolve::SystemSolver). Every process
+  // takes the same branch.
+  const bool same_here = distributed_matrix_ && linsolve::same_matrix(matrix, *distributed_matrix_);
+  if (total(same_here ? 0 : 1) == 0 && distributed_ppe_->reuse_for(matrix)) return true;
+  distributed_matrix_.reset();
+  if (!distributed_ppe_->setup(matrix)) return false;
+  distributed_matrix_ = std::make_unique<linsolve::CsrMatrix>(matrix);
+  return true;
+}
+
+template <int D>
 void FlowSolver<D>::project_distributed(PoissonData& data, StepMonitor& m) {
   // Each process assembles the rows of its unknowns of the one system (ldd/ppe.hpp), with
   // global column numbers, and the solver runs over the processes. As in one piece, wall nodes
   // in tension are released and the system solved again on the same preconditioner, their rows
   // made x = 0 (fix_at_zero).
   auto t = Clock::now();
-  refresh_ghosts(data.dirichlet);  // a row's Dirichlet neighbours may be ghosts
-  demote_weak_neumann_rows<D>(points_, neighbours_, ops_, options_.dx, owned_);
-  refresh_ghost_types();
-  // Global unknown numbers: this process's unknowns in point order, after the lower ranks'.
-  const auto is_unknown = [this](Index i) {
-    return points_.type[i] == PointType::interior || points_.type[i] == PointType::wall;
-  };
-  std::int64_t mine = 0;
-  for (Index i = 0; i < owned_; ++i) mine += is_unknown(i);
-  const std::int64_t first = exchange_->sum_before(mine), unknowns = total(mine);
-  std::vector<double> number(static_cast<std::size_t>(points_.size()), -1.0);
-  for (Index i = 0, next = 0; i < owned_; ++i)
-    if (is_unknown(i)) number[i] = static_cast<double>(first + next++);
-  refresh_ghosts(number);
-  const std::vector<std::int64_t> global(number.begin(), number.end());
-  auto rows = assemble_poisson_rows<D>(points_, neighbours_, ops_, data, owned_, global, unknowns);
+  auto [rows, global] = assemble_distributed(data);
+  const auto is_unknown = [this](Index i) { return ldd::is_unknown(points_, i); };
   lap(t, m.seconds.ppe_assembly);
 
   const int passes = options_.release_wall_tension ? 2 : 1;
@@ -965,7 +1018,7 @@ void FlowSolver<D>::project_distributed(PoissonData& data, StepMonitor& m) {
     for (Index r = 0; r < count; ++r) x[r] = points_.pressure[rows.point_of[r]];
     // reuse_for and setup agree over the processes: every process takes the same branch.
     bool ready = pass > 0 && distributed_ppe_->reuse_for(rows.matrix);
-    if (!ready) ready = distributed_ppe_->setup(rows.matrix);
+    if (!ready) ready = set_up_distributed(rows.matrix);
     const auto stats = ready ? distributed_ppe_->solve(rows.rhs, x) : linsolve::SolveStats{};
     lap(t, m.seconds.ppe_solve);
     m.ppe_iterations += stats.iterations;

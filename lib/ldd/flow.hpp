@@ -205,9 +205,8 @@ class FlowSolver {
   /// With `processes` (ldd/exchange.hpp), the run is one of several processes that each build
   /// the same flow from the same scene: each then keeps and computes the points of its region,
   /// with ghosts of the others' within h; every call below is then collective. A distributed
-  /// flow has prescribed walls: the structure's calls (refresh_wall_kinematics,
-  /// acceleration_pressure, state, restore) are for one process; the implicit viscosity and the
-  /// PPE observer too (InputError / not called).
+  /// flow's walls are on every process, whole (moved alike by each, for a structure too); the
+  /// implicit viscosity and the PPE observer are for one process (InputError / not called).
   FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>> fluid,
              std::span<const Vec<D>> velocity, const FlowOptions<D>& options, double t0 = 0.0,
              std::shared_ptr<PointExchange<D>> processes = nullptr);
@@ -337,6 +336,17 @@ class FlowSolver {
   double largest(double value) const;  ///< over the processes
   std::int64_t total(std::int64_t value) const;
   void project_distributed(PoissonData& data, StepMonitor& m);
+  /// This process's rows of the PPE of `data`, their unknowns numbered over the processes (weak
+  /// Neumann rows demoted: points_.type changes).
+  struct DistributedPoisson {
+    PoissonRows rows;
+    std::vector<std::int64_t> global;  ///< per point held, its global unknown (−1: none)
+  };
+  DistributedPoisson assemble_distributed(PoissonData& data);
+  /// The distributed PPE solver made ready for `matrix` (set up, or reused when it is the
+  /// matrix last set up on every process); false when the setup failed.
+  bool set_up_distributed(const linsolve::CsrMatrix& matrix);
+  void solve_distributed_acceleration_pressure(PoissonData& data, std::vector<double>& pressure);
 
   FlowOptions<D> options_;
   std::vector<WallMesh<D>> walls_;
@@ -345,6 +355,7 @@ class FlowSolver {
   PpeObserver ppe_observer_;
   std::shared_ptr<PointExchange<D>> exchange_;  ///< null: one process
   std::unique_ptr<linsolve::LinearSolver> distributed_ppe_;
+  std::unique_ptr<linsolve::CsrMatrix> distributed_matrix_;  ///< of the last distributed setup
   Index owned_ = 0;               ///< distributed: points [0, owned_) are this process's
   std::vector<std::int64_t> id_;  ///< per point, see ids()
   Migration last_migration_;

@@ -120,7 +120,8 @@ bool beyond_the_fluid(const PointSet<D>& pts, const Neighbours& nb, Index i, con
 
 template <int D>
 Index deactivate_wall_nodes_beyond_fluid(PointSet<D>& pts, Neighbours& nb,
-                                         const FreeSurfaceOptions& opt, Index owned) {
+                                         const FreeSurfaceOptions& opt, Index owned,
+                                         InactivePairs pairs) {
   const double cos_wall_cone = std::cos(opt.wall_cone_degrees * std::numbers::pi / 180.0);
   const Index n = pts.size();
   HM_ASSERT(nb.points() == n, "neighbour lists of {} points for {} points", nb.points(), n);
@@ -142,7 +143,8 @@ Index deactivate_wall_nodes_beyond_fluid(PointSet<D>& pts, Neighbours& nb,
   if (count == 0) return 0;
   for (Index i = 0; i < n; ++i)
     if (dry[i]) pts.type[i] = PointType::inactive;
-  remove_pairs(nb, [&](Index i, Index j) { return dry[i] || dry[j]; });
+  if (pairs == InactivePairs::removed)
+    remove_pairs(nb, [&](Index i, Index j) { return dry[i] || dry[j]; });
   return count;
 }
 
@@ -214,9 +216,11 @@ FreeSurfaceReport detect_free_surface(PointSet<D>& pts, const Neighbours& nb,
 }
 
 template Index deactivate_wall_nodes_beyond_fluid<2>(PointSet<2>&, Neighbours&,
-                                                     const FreeSurfaceOptions&, Index);
+                                                     const FreeSurfaceOptions&, Index,
+                                                     InactivePairs);
 template Index deactivate_wall_nodes_beyond_fluid<3>(PointSet<3>&, Neighbours&,
-                                                     const FreeSurfaceOptions&, Index);
+                                                     const FreeSurfaceOptions&, Index,
+                                                     InactivePairs);
 template double lattice_number_density<2>(double, double);
 template double lattice_number_density<3>(double, double);
 template FreeSurfaceReport detect_free_surface<2>(PointSet<2>&, const Neighbours&,

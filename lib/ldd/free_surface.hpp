@@ -61,10 +61,12 @@ double lattice_number_density(double dx, double h);
 /// layer, where the hydrostatic field is −ρg dx/2, not 0: that was an O(dx/H) error at the
 /// surface (3-D, 10 layers: 0.67 % of ρgH). Without them the contact line is carried by the
 /// fluid surface points next to the wall. Returns the number of nodes deactivated. Only the
-/// points [0, owned) are decided (all with owned < 0), as in deactivate_dry_wall_nodes.
+/// points [0, owned) are decided (all with owned < 0), and their pairs removed or left to the
+/// caller, as in deactivate_dry_wall_nodes.
 template <int D>
 Index deactivate_wall_nodes_beyond_fluid(PointSet<D>& points, Neighbours& neighbours,
-                                         const FreeSurfaceOptions& options, Index owned = -1);
+                                         const FreeSurfaceOptions& options, Index owned = -1,
+                                         InactivePairs pairs = InactivePairs::removed);
 
 /// Sets points.type of every fluid point (interior / surface / isolated) and of active wall
 /// nodes (wall / surface), using the previous types for the hysteresis. Only the points

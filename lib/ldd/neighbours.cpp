@@ -196,7 +196,8 @@ Neighbours find_wet_neighbours(const PointSet<D>& points, double radius) {
 }
 
 template <int D>
-Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& nb, Index owned) {
+Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& nb, Index owned,
+                                InactivePairs pairs) {
   const Index n = points.size();
   HM_ASSERT(nb.points() == n, "neighbour lists of {} points for {} points", nb.points(), n);
   const Index decided = owned < 0 ? n : owned;
@@ -213,7 +214,7 @@ Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& nb, Index owned
       points.type[i] = PointType::wall;
     }
   }
-  if (inactive > 0) remove_pairs_with_inactive(points, nb);
+  if (inactive > 0 && pairs == InactivePairs::removed) remove_pairs_with_inactive(points, nb);
   return inactive;
 }
 
@@ -228,8 +229,8 @@ template Neighbours find_neighbours<2>(std::span<const Vec<2>>, double);
 template Neighbours find_neighbours<3>(std::span<const Vec<3>>, double);
 template Neighbours find_wet_neighbours<2>(const PointSet<2>&, double);
 template Neighbours find_wet_neighbours<3>(const PointSet<3>&, double);
-template Index deactivate_dry_wall_nodes<2>(PointSet<2>&, Neighbours&, Index);
-template Index deactivate_dry_wall_nodes<3>(PointSet<3>&, Neighbours&, Index);
+template Index deactivate_dry_wall_nodes<2>(PointSet<2>&, Neighbours&, Index, InactivePairs);
+template Index deactivate_dry_wall_nodes<3>(PointSet<3>&, Neighbours&, Index, InactivePairs);
 template void remove_pairs_with_inactive<2>(const PointSet<2>&, Neighbours&);
 template void remove_pairs_with_inactive<3>(const PointSet<3>&, Neighbours&);
 

@@ -67,14 +67,20 @@ void remove_pairs(Neighbours& nb, Drop&& drop) {
   nb.indices.swap(out);
 }
 
+/// Whether a deactivation removes the pairs of the nodes it made inactive at once, or leaves
+/// them to the caller's remove_pairs_with_inactive (over processes: once the ghosts' types have
+/// arrived, one pass for the owners' and the ghosts' inactive nodes alike).
+enum class InactivePairs : bool { removed, kept };
+
 /// Wall nodes with no fluid neighbour become PointType::inactive and every pair with them is
-/// removed (spec §0.2 item 3). An inactive node with a fluid neighbour again becomes
-/// PointType::wall. Returns the number of inactive nodes. Only the points [0, owned) are
-/// decided (all with owned < 0): past them are ghosts (ldd/point_loop.hpp), whose own lists
-/// end at the halo's edge; their owners decide, and remove_pairs_with_inactive follows once
-/// their types have arrived.
+/// removed (spec §0.2 item 3; with InactivePairs::kept the caller removes them). An inactive
+/// node with a fluid neighbour again becomes PointType::wall. Returns the number of inactive
+/// nodes. Only the points [0, owned) are decided (all with owned < 0): past them are ghosts
+/// (ldd/point_loop.hpp), whose own lists end at the halo's edge; their owners decide, and
+/// remove_pairs_with_inactive follows once their types have arrived.
 template <int D>
-Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& neighbours, Index owned = -1);
+Index deactivate_dry_wall_nodes(PointSet<D>& points, Neighbours& neighbours, Index owned = -1,
+                                InactivePairs pairs = InactivePairs::removed);
 
 /// Removes every pair with an inactive point.
 template <int D>

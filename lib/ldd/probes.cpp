@@ -249,9 +249,11 @@ struct ElementLoad {
 };
 
 /// One element's share of a load whose traction at a quadrature point x (barycentrics b) on the
-/// side with normal `side` is traction(b, x, side, weight); weight > 0 marks the point wet.
+/// side with normal `side` is traction(b, x, side, weight); weight > 0 marks the point wet. Only
+/// the quadrature points `counted` (empty: all).
 template <int D, typename Traction>
-ElementLoad<D> element_load(const WallMesh<D>& wall, Index e, double dx, Traction&& traction) {
+ElementLoad<D> element_load(const WallMesh<D>& wall, Index e, double dx,
+                            const QuadraturePoints<D>& counted, Traction&& traction) {
   const auto& cell = wall.element(e);
   std::array<Vec<D>, D> x;
   for (int k = 0; k < D; ++k) x[k] = wall.vertices()[cell[k]];
@@ -262,6 +264,7 @@ ElementLoad<D> element_load(const WallMesh<D>& wall, Index e, double dx, Tractio
   for (const auto& q : element_quadrature(x, dx)) {
     Vec<D> xq = Vec<D>::Zero();
     for (int k = 0; k < D; ++k) xq += q.barycentric[k] * x[k];
+    if (counted && !counted(xq)) continue;
     Vec<D> t = Vec<D>::Zero();
     for (int s = 0; s < sides; ++s) {
       double weight = 0.0;
@@ -392,7 +395,8 @@ double probe_front(const PointSet<D>& points, const Vec<D>& direction, double ba
 
 template <int D>
 WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& wall, int body,
-                                 double dx, std::span<const double> pressure) {
+                                 double dx, std::span<const double> pressure,
+                                 const QuadraturePoints<D>& counted) {
   HM_ASSERT(dx > 0.0, "wall_pressure_loads: dx {} must be > 0", dx);
   if (pressure.empty()) pressure = points.pressure;
   HM_ASSERT(pressure.size() == points.pressure.size(),
@@ -408,7 +412,8 @@ WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& w
       continue;
     }
     per_element[e] = element_load(
-        wall, e, dx, [&](const Vec<D>&, const Vec<D>& x, const Vec<D>& side, double& weight) {
+        wall, e, dx, counted,
+        [&](const Vec<D>&, const Vec<D>& x, const Vec<D>& side, double& weight) {
           // The fluid pushes the wall away from itself: −p n, n into the fluid.
           return Vec<D>(-shepard_wall_pressure(points, pressure, grid, x, side, dx, weight) * side);
         });
@@ -418,7 +423,7 @@ WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& w
 
 template <int D>
 WallLoads<D> wall_viscous_loads(const PointSet<D>& points, const WallMesh<D>& wall, double dx,
-                                double dynamic_viscosity) {
+                                double dynamic_viscosity, const QuadraturePoints<D>& counted) {
   HM_ASSERT(dx > 0.0 && dynamic_viscosity >= 0.0,
             "wall_viscous_loads: dx {} must be > 0 and mu {} >= 0", dx, dynamic_viscosity);
   // Cells of 2.5 dx hold every point within the 2 dx × dx box in front of a quadrature point.
@@ -432,11 +437,12 @@ WallLoads<D> wall_viscous_loads(const PointSet<D>& points, const WallMesh<D>& wa
       per_element[e] = ElementLoad<D>{};
       continue;
     }
-    per_element[e] = element_load(
-        wall, e, dx, [&](const Vec<D>& b, const Vec<D>& x, const Vec<D>& side, double& weight) {
-          return shepard_wall_shear(points, fluid, x, wall.velocity_at(e, b), side, dx,
-                                    dynamic_viscosity, weight);
-        });
+    per_element[e] =
+        element_load(wall, e, dx, counted,
+                     [&](const Vec<D>& b, const Vec<D>& x, const Vec<D>& side, double& weight) {
+                       return shepard_wall_shear(points, fluid, x, wall.velocity_at(e, b), side, dx,
+                                                 dynamic_viscosity, weight);
+                     });
   }
   return assemble_loads(wall, per_element);
 }
@@ -449,11 +455,13 @@ template double probe_elevation<2>(const PointSet<2>&, const Vec<2>&, double, bo
 template double probe_elevation<3>(const PointSet<3>&, const Vec<3>&, double, bool*);
 template double probe_front<2>(const PointSet<2>&, const Vec<2>&, double, double, double, bool*);
 template double probe_front<3>(const PointSet<3>&, const Vec<3>&, double, double, double, bool*);
-template WallLoads<2> wall_viscous_loads<2>(const PointSet<2>&, const WallMesh<2>&, double, double);
-template WallLoads<3> wall_viscous_loads<3>(const PointSet<3>&, const WallMesh<3>&, double, double);
+template WallLoads<2> wall_viscous_loads<2>(const PointSet<2>&, const WallMesh<2>&, double, double,
+                                            const QuadraturePoints<2>&);
+template WallLoads<3> wall_viscous_loads<3>(const PointSet<3>&, const WallMesh<3>&, double, double,
+                                            const QuadraturePoints<3>&);
 template WallLoads<2> wall_pressure_loads<2>(const PointSet<2>&, const WallMesh<2>&, int, double,
-                                             std::span<const double>);
+                                             std::span<const double>, const QuadraturePoints<2>&);
 template WallLoads<3> wall_pressure_loads<3>(const PointSet<3>&, const WallMesh<3>&, int, double,
-                                             std::span<const double>);
+                                             std::span<const double>, const QuadraturePoints<3>&);
 
 }  // namespace hm::ldd

@@ -5,6 +5,7 @@
 // they are brute force over the points (a few probes per output time) or use a cell grid (loads).
 // Gravity is along the last axis (y in 2-D, z in 3-D); "height" is that coordinate, in scene
 // coordinates. SI units: m, Pa (gauge), N (3-D) or N/m per unit width (2-D).
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -56,6 +57,10 @@ struct WallLoads {
   double wetted = 0.0;
 };
 
+/// Which quadrature points of a wall's loads count (by position [m]); called from several threads.
+template <int D>
+using QuadraturePoints = std::function<bool(const Vec<D>&)>;
+
 /// Pressure loads of the fluid on `wall` (body index `body` of the wall nodes in `points`), spec
 /// §3.1 with the sampled wall nodes (CHOICE-B). Each element is cut into quadrature cells of size
 /// ≤ dx/2 (a segment into k equal pieces, a triangle into its regular k-subdivision, one point
@@ -67,10 +72,13 @@ struct WallLoads {
 /// functions (the quadrature point's barycentrics), so Σ vertex_force = total exactly. A thin
 /// wall is loaded on both sides: nodes with normal along +n give −p⁺n, along −n give +p⁻n.
 /// `pressure`: one value per point instead of points.pressure (empty: points.pressure), e.g. the
-/// added-mass response FlowSolver::acceleration_pressure.
+/// added-mass response FlowSolver::acceleration_pressure. `counted`: the quadrature points to
+/// load from (empty: all) — a process of a distributed flow those of its own region, whose
+/// nodes within dx it holds (owned or ghosts); the processes' loads then add up to the whole.
 template <int D>
 WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& wall, int body,
-                                 double dx, std::span<const double> pressure = {});
+                                 double dx, std::span<const double> pressure = {},
+                                 const QuadraturePoints<D>& counted = {});
 
 /// Viscous (no-slip shear) loads of the fluid on `wall`, on the quadrature of
 /// wall_pressure_loads. At a quadrature point x_q with wall velocity U_q and normal n (into the
@@ -81,8 +89,9 @@ WallLoads<D> wall_pressure_loads(const PointSet<D>& points, const WallMesh<D>& w
 /// gradient, exact for a linear profile, first order for a curved one. (·)_t removes the normal
 /// part; the normal viscous stress 2μ ∂u_n/∂n vanishes at a no-slip wall (∂u_n/∂n = −∇_t·u_t =
 /// 0) and is left out. `dynamic_viscosity` μ = ρν [Pa·s]. Dry quadrature points carry none.
+/// `counted` as for wall_pressure_loads (the points within 2.3 dx of a quadrature point).
 template <int D>
 WallLoads<D> wall_viscous_loads(const PointSet<D>& points, const WallMesh<D>& wall, double dx,
-                                double dynamic_viscosity);
+                                double dynamic_viscosity, const QuadraturePoints<D>& counted = {});
 
 }  // namespace hm::ldd

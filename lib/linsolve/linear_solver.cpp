@@ -221,6 +221,22 @@ CsrMatrix amg_matrix(const CsrMatrix& a, double drop, int first_row) {
   return CsrMatrix(view);
 }
 
+namespace {
+
+template <typename T>
+bool same_array(const T* a, const T* b, Eigen::Index n) {
+  return std::equal(a, a + n, b);
+}
+
+}  // namespace
+
+bool same_matrix(const CsrMatrix& a, const CsrMatrix& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() && a.nonZeros() == b.nonZeros() &&
+         same_array(a.outerIndexPtr(), b.outerIndexPtr(), a.rows() + 1) &&
+         same_array(a.innerIndexPtr(), b.innerIndexPtr(), a.nonZeros()) &&
+         same_array(a.valuePtr(), b.valuePtr(), a.nonZeros());
+}
+
 double relative_residual(const CsrMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x) {
   const double norm_b = b.norm();
   if (norm_b == 0.0) return x.allFinite() ? (a * x).norm() : std::nan("");

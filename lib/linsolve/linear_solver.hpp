@@ -92,6 +92,9 @@ std::unique_ptr<LinearSolver> make_solver(Method method, const Settings& setting
 /// in column first_row + r.
 CsrMatrix amg_matrix(const CsrMatrix& a, double drop, int first_row = 0);
 
+/// Whether a and b are the same matrix, entry by entry (pattern and values, bit for bit).
+bool same_matrix(const CsrMatrix& a, const CsrMatrix& b);
+
 /// ‖b − Ax‖/‖b‖ recomputed from the matrix, independently of any solver (0 when b = 0).
 double relative_residual(const CsrMatrix& a, const Eigen::VectorXd& b, const Eigen::VectorXd& x);
 

@@ -5,21 +5,6 @@
 #include "core/errors.hpp"
 
 namespace hm::linsolve {
-namespace {
-
-template <typename T>
-bool same_array(const T* a, const T* b, Eigen::Index n) {
-  return std::equal(a, a + n, b);
-}
-
-bool same_matrix(const CsrMatrix& a, const CsrMatrix& b) {
-  return a.rows() == b.rows() && a.nonZeros() == b.nonZeros() &&
-         same_array(a.outerIndexPtr(), b.outerIndexPtr(), a.rows() + 1) &&
-         same_array(a.innerIndexPtr(), b.innerIndexPtr(), a.nonZeros()) &&
-         same_array(a.valuePtr(), b.valuePtr(), a.nonZeros());
-}
-
-}  // namespace
 
 SystemSolver::SystemSolver(const Strategy& strategy, const Settings& settings)
     : strategy_(strategy), settings_(settings) {

@@ -2,6 +2,7 @@
 
 #include <mpi.h>
 
+#include <mutex>
 #include <stdexcept>
 
 namespace hm::parallel {
@@ -77,6 +78,8 @@ PointBlock<D> FlowExchange<D>::gather(const PointBlock<D>& owned) const {
 
 template <int D>
 bool FlowExchange<D>::owns(const ldd::Vec<D>& x) const {
+  // Zoltan does not say its point assignment is safe from several threads at once.
+  const std::lock_guard lock(owner_mutex_);
   return decomposition_->owner_of(x) == processes_.rank;
 }
 

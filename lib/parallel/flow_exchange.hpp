@@ -5,6 +5,7 @@
 // `rebalance_above` × the mean; ghosts within the support radius along a kept Halo; reductions
 // over MPI_COMM_WORLD.
 #include <memory>
+#include <mutex>
 
 #include "ldd/exchange.hpp"
 #include "parallel/decomposition.hpp"
@@ -35,6 +36,7 @@ class FlowExchange final : public ldd::PointExchange<D> {
   Processes processes_;
   double rebalance_above_;
   std::unique_ptr<Decomposition<D>> decomposition_;  ///< made by the first migrate
+  mutable std::mutex owner_mutex_;                   ///< owns() from several threads
   std::unique_ptr<Halo<D>> halo_;                    ///< of the last gather_ghosts
 };
 
