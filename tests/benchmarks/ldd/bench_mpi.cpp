@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <memory>
 #include <string>
@@ -196,6 +197,24 @@ void BM_DistributedFlow(benchmark::State& state) {
                          "predictor", "ppe_assembly", "ppe_solve",  "corrector"};
   for (std::size_t k = 0; k < PhaseSeconds::count; ++k)
     state.counters[std::string(names[k]) + "_s"] = largest(v[k]) / steps;
+  // Each process's share, for the balance of the regions (stderr, in rank order).
+  long wall = 0, active_wall = 0, surface = 0;
+  for (Index i = 0; i < flow.owned(); ++i) {
+    const bool is_wall = flow.points().kind[i] == PointKind::wall;
+    wall += is_wall;
+    active_wall += is_wall && flow.points().type[i] != PointType::inactive;
+    surface += !is_wall && flow.points().type[i] == PointType::surface;
+  }
+  for (int rank = 0; rank < processes.count; ++rank) {
+    MPI_Barrier(MPI_COMM_WORLD);
+    if (rank != processes.rank) continue;
+    std::fprintf(
+        stderr, "process %d: %ld fluid (%ld surface), %ld wall nodes (%ld active); s a step:", rank,
+        static_cast<long>(flow.owned()) - wall, surface, wall, active_wall);
+    for (std::size_t k = 0; k < PhaseSeconds::count; ++k)
+      std::fprintf(stderr, " %s %.3f", names[k], v[k] / steps);
+    std::fprintf(stderr, "\n");
+  }
 }
 
 BENCHMARK(BM_DistributedFlow<2>)->Args({20000, 20})->Iterations(1)->UseRealTime();
