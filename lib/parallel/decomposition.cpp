@@ -299,6 +299,42 @@ PointBlock<D> Decomposition<D>::ghosts(const PointBlock<D>& points, double radiu
   return halo(points, radius).ghosts_;
 }
 
+/// The processes a halo sends to and receives from, in ascending rank order (the order of its
+/// send buffer and of its ghosts), with the points each, as an MPI distributed graph.
+struct NeighbourGraph {
+  MPI_Comm comm = MPI_COMM_NULL;
+  std::vector<int> send_counts, receive_counts;  ///< points, per destination / source
+
+  /// From the points this process sends to each process of the run (a collective call: the
+  /// counts it receives come from the others).
+  explicit NeighbourGraph(const std::vector<int>& send_to) {
+    std::vector<int> receive_from(send_to.size(), 0);
+    MPI_Alltoall(send_to.data(), 1, MPI_INT, receive_from.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    std::vector<int> destinations, sources;
+    for (std::size_t q = 0; q < send_to.size(); ++q) {
+      if (send_to[q] > 0) {
+        destinations.push_back(static_cast<int>(q));
+        send_counts.push_back(send_to[q]);
+      }
+      if (receive_from[q] > 0) {
+        sources.push_back(static_cast<int>(q));
+        receive_counts.push_back(receive_from[q]);
+      }
+    }
+    MPI_Dist_graph_create_adjacent(MPI_COMM_WORLD, static_cast<int>(sources.size()), sources.data(),
+                                   MPI_UNWEIGHTED, static_cast<int>(destinations.size()),
+                                   destinations.data(), MPI_UNWEIGHTED, MPI_INFO_NULL,
+                                   /*reorder=*/0, &comm);
+  }
+  ~NeighbourGraph() {
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized && comm != MPI_COMM_NULL) MPI_Comm_free(&comm);
+  }
+  NeighbourGraph(const NeighbourGraph&) = delete;
+  NeighbourGraph& operator=(const NeighbourGraph&) = delete;
+};
+
 template <int D>
 Halo<D> Decomposition<D>::halo(const PointBlock<D>& points, double radius) const {
   const int rank = zoltan_->processes.rank, count = zoltan_->processes.count;
@@ -321,18 +357,16 @@ Halo<D> Decomposition<D>::halo(const PointBlock<D>& points, double radius) const
   Halo<D> halo;
   MigrationReport report;
   halo.ghosts_ = exchange(points, destinations, rank, count, report);
-  halo.send_counts_.assign(static_cast<std::size_t>(count), 0);
+  std::vector<int> send_counts(static_cast<std::size_t>(count), 0);
   for (const auto& to : destinations)
-    for (int q : to) ++halo.send_counts_[static_cast<std::size_t>(q)];
+    for (int q : to) ++send_counts[static_cast<std::size_t>(q)];
   std::vector<int> start(static_cast<std::size_t>(count), 0);
-  std::exclusive_scan(halo.send_counts_.begin(), halo.send_counts_.end(), start.begin(), 0);
+  std::exclusive_scan(send_counts.begin(), send_counts.end(), start.begin(), 0);
   halo.send_points_.resize(static_cast<std::size_t>(report.sent));
   for (std::size_t i = 0; i < points.size(); ++i)  // in exchange()'s order
     for (int q : destinations[i])
       halo.send_points_[static_cast<std::size_t>(start[q]++)] = static_cast<int>(i);
-  halo.receive_counts_.assign(static_cast<std::size_t>(count), 0);
-  MPI_Alltoall(halo.send_counts_.data(), 1, MPI_INT, halo.receive_counts_.data(), 1, MPI_INT,
-               MPI_COMM_WORLD);
+  halo.graph_ = std::make_shared<const NeighbourGraph>(send_counts);
   return halo;
 }
 
@@ -350,11 +384,12 @@ std::vector<double> Halo<D>::refresh(std::span<const double> owned_fields, int w
     return v;
   };
   std::vector<int> send_starts, receive_starts;
-  const auto send_counts = scaled(send_counts_, send_starts);
-  const auto receive_counts = scaled(receive_counts_, receive_starts);
+  const auto send_counts = scaled(graph_->send_counts, send_starts);
+  const auto receive_counts = scaled(graph_->receive_counts, receive_starts);
   std::vector<double> received(ghosts_.size() * static_cast<std::size_t>(width));
-  MPI_Alltoallv(send.data(), send_counts.data(), send_starts.data(), MPI_DOUBLE, received.data(),
-                receive_counts.data(), receive_starts.data(), MPI_DOUBLE, MPI_COMM_WORLD);
+  MPI_Neighbor_alltoallv(send.data(), send_counts.data(), send_starts.data(), MPI_DOUBLE,
+                         received.data(), receive_counts.data(), receive_starts.data(), MPI_DOUBLE,
+                         graph_->comm);
   return received;
 }
 

@@ -58,8 +58,14 @@ struct MigrationReport {
   long owned = 0;     ///< points it owns afterwards
 };
 
+/// The processes one halo exchanges with (an MPI distributed-graph communicator; defined where
+/// MPI is).
+struct NeighbourGraph;
+
 /// The ghost exchange as it was built: the ghosts a process received, and which of its owned
-/// points it sent to which process. Valid while no point changes process (within a step).
+/// points it sent to which process. Valid while no point changes process (within a step). A
+/// refresh talks to those processes alone (MPI_Neighbor_alltoallv on their graph): its cost
+/// does not grow with the number of processes of the run.
 template <int D>
 class Halo {
  public:
@@ -77,8 +83,8 @@ class Halo {
   template <int>
   friend class Decomposition;
   PointBlock<D> ghosts_;
-  std::vector<int> send_points_;                   ///< owned points, grouped by destination process
-  std::vector<int> send_counts_, receive_counts_;  ///< points, per process
+  std::vector<int> send_points_;  ///< owned points, grouped by destination process
+  std::shared_ptr<const NeighbourGraph> graph_;
 };
 
 template <int D>
