@@ -218,7 +218,7 @@ void BM_DistributedFlow(benchmark::State& state) {
 }
 
 BENCHMARK(BM_DistributedFlow<2>)->Args({20000, 20})->Iterations(1)->UseRealTime();
-BENCHMARK(BM_DistributedFlow<3>)->Args({200000, 5})->Iterations(1)->UseRealTime();
+BENCHMARK(BM_DistributedFlow<3>)->Args({210000, 5})->Iterations(1)->UseRealTime();
 BENCHMARK(BM_DistributedPpe<2>)->Arg(40000)->Arg(160000)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_DistributedPpe<3>)->Arg(27000)->Arg(125000)->Iterations(1)->UseRealTime();
 BENCHMARK(BM_Decomposition<3>)->Arg(200000)->Arg(1000000)->Iterations(1)->UseRealTime();
