@@ -82,9 +82,9 @@ Dense take(const double*& f) {
 /// The share of a step's work a point stands for, by which the regions are drawn [CHOICE]: 1 +
 /// its neighbours (travelling_owned_points), as the operators, PBD, the smoothing and its PPE row
 /// all cost in proportion to them (the interior of a water column holds more than its surface); a
-/// dry wall node (inactive) has an empty list and no PPE row. Before any list exists (the
-/// set-up's regions): 1 + the lattice's neighbours within h for a fluid point or a wall node,
-/// wet or not (a wet wall node costs a fluid point's work: measured, 3-D dam break at 2
+/// dry wall node (inactive) has an empty list and no PPE row: 1. Before any list exists (the
+/// set-up's regions): 1 + the lattice's neighbours within h for a fluid point or a wall node not
+/// known to be dry (a wet wall node costs a fluid point's work: measured, 3-D dam break at 2
 /// processes, the operators 2.6 µs a fluid point or wet wall node alike). Regions of equal counts
 /// gave the process with the water column 1.6× the other's fluid work; wet nodes at half a fluid
 /// point's weight left one process 22 % more fluid points and wet nodes than the other; weights by
@@ -1014,7 +1014,6 @@ void FlowSolver<D>::project_distributed(PoissonData& data, StepMonitor& m) {
   // made x = 0 (fix_at_zero).
   auto t = Clock::now();
   auto [rows, global] = assemble_distributed(data);
-  const auto is_unknown = [this](Index i) { return ldd::is_unknown(points_, i); };
   lap(t, m.seconds.ppe_assembly);
 
   const int passes = options_.release_wall_tension ? 2 : 1;
@@ -1034,7 +1033,7 @@ void FlowSolver<D>::project_distributed(PoissonData& data, StepMonitor& m) {
     m.ppe_failure = ready ? stats.failure : distributed_ppe_->setup_failure();
     m.ppe_passes = pass + 1;
     for (Index i = 0; i < owned_; ++i)
-      if (!is_unknown(i))
+      if (!is_unknown(points_, i))
         points_.pressure[i] =
             points_.type[i] == PointType::surface || points_.type[i] == PointType::isolated
                 ? data.dirichlet[i]
