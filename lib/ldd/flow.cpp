@@ -976,7 +976,7 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
 template <int D>
 typename FlowSolver<D>::DistributedPoisson FlowSolver<D>::assemble_distributed(PoissonData& data) {
   refresh_ghosts(data.dirichlet);  // a row's Dirichlet neighbours may be ghosts
-  demote_weak_neumann_rows<D>(points_, neighbours_, ops_, options_.dx, owned_);
+  demote_weak_neumann_rows<D>(points_, neighbours_, ops_, options_.dx, owned_, &data.wall_rows);
   refresh_ghost_types();
   // Global unknown numbers: this process's unknowns in point order, after the lower ranks'.
   std::int64_t mine = 0;

@@ -69,21 +69,35 @@ CellIndex<D> build_cells(std::span<const Vec<D>> x, double cell) {
 #pragma omp parallel for schedule(static)
   for (std::size_t i = 0; i < n; ++i) k[i] = g.key(g.cell_of(x[i]));
   g.order.resize(n);
-  std::iota(g.order.begin(), g.order.end(), 0);
-  std::sort(g.order.begin(), g.order.end(), [&](Index a, Index b) {
-    return k[static_cast<std::size_t>(a)] < k[static_cast<std::size_t>(b)] ||
-           (k[static_cast<std::size_t>(a)] == k[static_cast<std::size_t>(b)] && a < b);
-  });
   g.keys.resize(n);
-  for (std::size_t s = 0; s < n; ++s) g.keys[s] = k[static_cast<std::size_t>(g.order[s])];
   constexpr double dense_cells_per_point = 16.0;
   double cells = 1.0;
   for (int a = 0; a < D; ++a) cells *= static_cast<double>(g.dims[a]);
-  if (cells <= dense_cells_per_point * static_cast<double>(std::max<std::size_t>(n, 4096))) {
-    g.start.assign(static_cast<std::size_t>(cells) + 1, 0);
-    for (std::uint64_t key : g.keys) ++g.start[static_cast<std::size_t>(key) + 1];
-    std::partial_sum(g.start.begin(), g.start.end(), g.start.begin());
+  if (cells > dense_cells_per_point * static_cast<double>(std::max<std::size_t>(n, 4096))) {
+    std::iota(g.order.begin(), g.order.end(), 0);
+    std::sort(g.order.begin(), g.order.end(), [&](Index a, Index b) {
+      return k[static_cast<std::size_t>(a)] < k[static_cast<std::size_t>(b)] ||
+             (k[static_cast<std::size_t>(a)] == k[static_cast<std::size_t>(b)] && a < b);
+    });
+    for (std::size_t s = 0; s < n; ++s) g.keys[s] = k[static_cast<std::size_t>(g.order[s])];
+    return g;
   }
+  // Few cells: a counting sort into the dense table, in the same order (by cell, then index).
+  // The 3-D dam break's 296 k points: about 3 ms a step against 15 for the comparison sort
+  // (perf's samples).
+  auto& start = g.start;
+  start.assign(static_cast<std::size_t>(cells) + 1, 0);
+  for (std::uint64_t key : k) ++start[static_cast<std::size_t>(key) + 1];
+  std::partial_sum(start.begin(), start.end(), start.begin());
+  // Each cell's points from its end down (start[c + 1] counts down to cell c's first slot),
+  // then the table moved back by one entry.
+  for (std::size_t i = n; i-- > 0;) {
+    const std::size_t slot = --start[static_cast<std::size_t>(k[i]) + 1];
+    g.order[slot] = static_cast<Index>(i);
+    g.keys[slot] = k[i];
+  }
+  std::copy(start.begin() + 1, start.end(), start.begin());
+  start.back() = n;
   return g;
 }
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <tuple>
 
 #include "core/errors.hpp"
 
@@ -336,14 +337,19 @@ SolveReport PoissonSolver::solve(const PoissonSystem& sys, std::vector<double>& 
 
 template <int D>
 Index demote_weak_neumann_rows(PointSet<D>& pts, const Neighbours& nb, const Operators<D>& ops,
-                               double dx, Index owned) {
+                               double dx, Index owned, std::vector<double>* wall_rows) {
   HM_ASSERT(owned <= pts.size(), "{} owned of {} points", owned, pts.size());
   Index weak = 0;
-  std::vector<double> coeff;
+  std::vector<double> scratch;
+  if (wall_rows) wall_rows->assign(nb.indices.size(), 0.0);
   for (Index i = 0; i < owned; ++i) {
     if (pts.type[i] != PointType::wall) continue;
-    coeff.resize(static_cast<std::size_t>(nb.count(i)));
-    if (weak_neumann(neumann_row<D>(pts, nb, ops, i, coeff.data()), ops.isolated(i), dx)) {
+    double* coeff = wall_rows ? wall_rows->data() + nb.offsets[i] : nullptr;
+    if (!coeff) {
+      scratch.resize(static_cast<std::size_t>(nb.count(i)));
+      coeff = scratch.data();
+    }
+    if (weak_neumann(neumann_row<D>(pts, nb, ops, i, coeff), ops.isolated(i), dx)) {
       pts.type[i] = PointType::surface;
       ++weak;
     }
@@ -358,17 +364,21 @@ PoissonRows assemble_poisson_rows(const PointSet<D>& pts, const Neighbours& nb,
                                   std::int64_t global_unknowns) {
   HM_ASSERT(global_unknown.size() == static_cast<std::size_t>(pts.size()),
             "{} global unknown numbers for {} points", global_unknown.size(), pts.size());
+  HM_ASSERT(data.wall_rows.empty() || data.wall_rows.size() == nb.indices.size(),
+            "{} wall-row coefficients for {} neighbour pairs", data.wall_rows.size(),
+            nb.indices.size());
   PoissonRows rows;
   for (Index i = 0; i < owned; ++i)
     if (global_unknown[static_cast<std::size_t>(i)] >= 0) rows.point_of.push_back(i);
   const auto m = static_cast<Index>(rows.point_of.size());
-  const auto is_unknown = [&](Index j) { return global_unknown[static_cast<std::size_t>(j)] >= 0; };
+  const auto unknown = [&](Index j) { return global_unknown[static_cast<std::size_t>(j)]; };
   // Row sizes (the diagonal and the unknown neighbours), then each row written in place.
   std::vector<int> outer(static_cast<std::size_t>(m) + 1, 0);
 #pragma omp parallel for schedule(static)
   for (Index r = 0; r < m; ++r) {
     const auto nbr = nb.of(rows.point_of[r]);
-    outer[r + 1] = 1 + static_cast<int>(std::count_if(nbr.begin(), nbr.end(), is_unknown));
+    outer[r + 1] = 1 + static_cast<int>(std::count_if(nbr.begin(), nbr.end(),
+                                                      [&](Index j) { return unknown(j) >= 0; }));
   }
   std::partial_sum(outer.begin(), outer.end(), outer.begin());
   auto& a = rows.matrix;
@@ -378,32 +388,54 @@ PoissonRows assemble_poisson_rows(const PointSet<D>& pts, const Neighbours& nb,
   rows.rhs.resize(m);
 #pragma omp parallel
   {
-    std::vector<double> coeff;
-    std::vector<std::pair<std::int64_t, double>> row;
+    std::vector<double> scratch;
+    std::vector<std::pair<int, double>> unordered;
 #pragma omp for schedule(dynamic, 256)
     for (Index r = 0; r < m; ++r) {
       const Index i = rows.point_of[r];
       const bool wall = pts.type[i] == PointType::wall;
       const auto nbr = nb.of(i);
-      coeff.resize(nbr.size());
-      if (wall)
-        neumann_row<D>(pts, nb, ops, i, coeff.data());
-      else
-        std::copy_n(ops.laplacian.data() + nb.offsets[i], nbr.size(), coeff.data());
+      const double* coeff = ops.laplacian.data() + nb.offsets[i];
+      if (wall && !data.wall_rows.empty()) {
+        coeff = data.wall_rows.data() + nb.offsets[i];
+      } else if (wall) {
+        scratch.resize(nbr.size());
+        neumann_row<D>(pts, nb, ops, i, scratch.data());
+        coeff = scratch.data();
+      }
       double diag = 0.0, rhs = wall ? data.neumann[i] : data.source[i];
-      for (double c : coeff) diag -= c;
-      row.assign(1, {global_unknown[static_cast<std::size_t>(i)], 1.0});
+      for (std::size_t k = 0; k < nbr.size(); ++k) diag -= coeff[k];
+      // In list order with the diagonal in its place: ascending unless the row reaches ghosts
+      // numbered out of order (the owned unknowns are numbered in point order).
+      int* column = a.innerIndexPtr() + outer[r];
+      double* value = a.valuePtr() + outer[r];
+      bool diagonal_written = false;
       for (std::size_t k = 0; k < nbr.size(); ++k) {
         const Index j = nbr[k];
-        if (is_unknown(j))
-          row.emplace_back(global_unknown[static_cast<std::size_t>(j)], coeff[k] / diag);
-        else if (dirichlet_type(pts.type[j]) && !data.dirichlet.empty())
+        if (!diagonal_written && j > i) {
+          *column++ = static_cast<int>(unknown(i));
+          *value++ = 1.0;
+          diagonal_written = true;
+        }
+        if (unknown(j) >= 0) {
+          *column++ = static_cast<int>(unknown(j));
+          *value++ = coeff[k] / diag;
+        } else if (dirichlet_type(pts.type[j]) && !data.dirichlet.empty()) {
           rhs -= coeff[k] * data.dirichlet[j];
+        }
       }
-      std::sort(row.begin(), row.end());
-      for (std::size_t e = 0; e < row.size(); ++e) {
-        a.innerIndexPtr()[outer[r] + e] = static_cast<int>(row[e].first);
-        a.valuePtr()[outer[r] + e] = row[e].second;
+      if (!diagonal_written) {
+        *column++ = static_cast<int>(unknown(i));
+        *value++ = 1.0;
+      }
+      int* first = a.innerIndexPtr() + outer[r];
+      if (!std::is_sorted(first, column)) {
+        double* first_value = a.valuePtr() + outer[r];
+        unordered.clear();
+        for (auto k = 0; first + k != column; ++k) unordered.emplace_back(first[k], first_value[k]);
+        std::sort(unordered.begin(), unordered.end());
+        for (std::size_t k = 0; k < unordered.size(); ++k)
+          std::tie(first[k], first_value[k]) = unordered[k];
       }
       rows.rhs[r] = rhs / diag;
     }
@@ -460,9 +492,9 @@ template PoissonSystem assemble_poisson<2>(PointSet<2>&, const Neighbours&, cons
 template PoissonSystem assemble_poisson<3>(PointSet<3>&, const Neighbours&, const Operators<3>&,
                                            const PoissonData&, double);
 template Index demote_weak_neumann_rows<2>(PointSet<2>&, const Neighbours&, const Operators<2>&,
-                                           double, Index);
+                                           double, Index, std::vector<double>*);
 template Index demote_weak_neumann_rows<3>(PointSet<3>&, const Neighbours&, const Operators<3>&,
-                                           double, Index);
+                                           double, Index, std::vector<double>*);
 template PoissonRows assemble_poisson_rows<2>(const PointSet<2>&, const Neighbours&,
                                               const Operators<2>&, const PoissonData&, Index,
                                               std::span<const std::int64_t>, std::int64_t);

@@ -31,6 +31,10 @@ struct PoissonData {
   std::vector<double> source;     ///< interior points: ∇²p [Pa/m²]
   std::vector<double> neumann;    ///< wall nodes: n·∇p [Pa/m]
   std::vector<double> dirichlet;  ///< surface / isolated points: p [Pa]
+  /// Over processes: the owned wall nodes' Neumann rows, a coefficient per neighbour pair (as
+  /// Neighbours::indices), computed once by demote_weak_neumann_rows for assemble_poisson_rows;
+  /// empty: computed there.
+  std::vector<double> wall_rows;
 };
 
 struct PoissonSystem {
@@ -53,8 +57,9 @@ PoissonSystem assemble_poisson(PointSet<D>& points, const Neighbours& neighbours
 /// ghost copies of other processes' points within h (parallel/decomposition.hpp), in two steps
 /// with an exchange between:
 ///  1. demote_weak_neumann_rows: the owned wall nodes whose Neumann row has no usable diagonal
-///     become SURFACE (as assemble_poisson does); their owners' types must then reach the
-///     ghosts, and each point its global unknown number (−1: Dirichlet or inactive);
+///     become SURFACE (as assemble_poisson does; the rows kept in `wall_rows` when given, as
+///     PoissonData::wall_rows); their owners' types must then reach the ghosts, and each point
+///     its global unknown number (−1: Dirichlet or inactive);
 ///  2. assemble_poisson_rows: the rows of the owned unknowns, in the order of their points, with
 ///     global column numbers (sorted within each row) — this process's block of rows of the
 ///     system assemble_poisson builds from all the points in one piece (to round-off: the
@@ -62,7 +67,8 @@ PoissonSystem assemble_poisson(PointSet<D>& points, const Neighbours& neighbours
 /// Returns the number of rows demoted.
 template <int D>
 Index demote_weak_neumann_rows(PointSet<D>& points, const Neighbours& neighbours,
-                               const Operators<D>& ops, double dx, Index owned);
+                               const Operators<D>& ops, double dx, Index owned,
+                               std::vector<double>* wall_rows = nullptr);
 
 struct PoissonRows {
   linsolve::CsrMatrix matrix;   ///< owned unknowns × all the processes' unknowns, unit diagonal

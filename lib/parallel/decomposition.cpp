@@ -1,6 +1,7 @@
 #include "parallel/decomposition.hpp"
 
 #include <algorithm>
+#include <cfloat>
 #include <cstdio>
 #include <cstdlib>
 #include <mutex>
@@ -91,6 +92,7 @@ PointBlock<D> exchange(const PointBlock<D>& points,
   std::vector<int> send_points(static_cast<std::size_t>(count), 0);
   for (const auto& to : destinations)
     for (int p : to) ++send_points[static_cast<std::size_t>(p)];
+  const auto staying = static_cast<std::size_t>(send_points[static_cast<std::size_t>(rank)]);
   send_points[static_cast<std::size_t>(rank)] = 0;
   std::vector<int> receive_points(static_cast<std::size_t>(count), 0);
   MPI_Alltoall(send_points.data(), 1, MPI_INT, receive_points.data(), 1, MPI_INT, MPI_COMM_WORLD);
@@ -104,6 +106,10 @@ PointBlock<D> exchange(const PointBlock<D>& points,
 
   PointBlock<D> out;
   out.width = points.width;
+  const std::size_t held = staying + static_cast<std::size_t>(received);
+  out.position.reserve(held);
+  out.id.reserve(held);
+  out.fields.reserve(held * static_cast<std::size_t>(points.width));
   std::vector<double> send_values(static_cast<std::size_t>(sent) * per_point);
   std::vector<std::int64_t> send_ids(static_cast<std::size_t>(sent));
   std::vector<int> cursor = send_start;
@@ -269,13 +275,70 @@ MigrationReport Decomposition<D>::balance(PointBlock<D>& points) {
         "Zoltan_LB_Partition");
   Zoltan_LB_Free_Part(&import_global, &import_local, &import_procs, &import_parts);
   Zoltan_LB_Free_Part(&export_global, &export_local, &export_procs, &export_parts);
+  keep_own_region();
   // Not Zoltan's lists, which may send points lying on a cut (a lattice row) to either side for
   // balance: the regions decide, so that a point is always in its owner's region.
   return migrate(points);
 }
 
 template <int D>
+void Decomposition<D>::keep_own_region() {
+  // Zoltan's point and box queries are asked for every point (migration, ghosts, the wall
+  // loads' and the volume monitor's filters); most points are well inside their region, which
+  // the box answers at once.
+  const int rank = zoltan_->processes.rank;
+  region_known_ = false;
+  int dimensions = 0;
+  double lo[3], hi[3];
+  check(Zoltan_RCB_Box(zoltan_->zz, rank, &dimensions, &lo[0], &lo[1], &lo[2], &hi[0], &hi[1],
+                       &hi[2]),
+        "Zoltan_RCB_Box");
+  if (zoltan_->processes.count == 1) {  // everywhere (Zoltan's box is then a point)
+    region_lo_.setConstant(-DBL_MAX);
+    region_hi_.setConstant(DBL_MAX);
+    region_known_ = true;
+    return;
+  }
+  if (dimensions != D) return;
+  // Part `rank` is this process's (Zoltan's default: one part a process): asked at a point
+  // inside the box.
+  double inside[3] = {0.0, 0.0, 0.0};
+  for (int a = 0; a < D; ++a) {
+    if (!(lo[a] < hi[a])) return;
+    region_lo_[a] = lo[a];
+    region_hi_[a] = hi[a];
+    const bool bounded_below = lo[a] > -DBL_MAX, bounded_above = hi[a] < DBL_MAX;
+    inside[a] = bounded_below && bounded_above ? 0.5 * (lo[a] + hi[a])
+                : bounded_below                ? lo[a] + 1.0
+                : bounded_above                ? hi[a] - 1.0
+                                               : 0.0;
+  }
+  int process = -1, part = -1;
+  check(Zoltan_LB_Point_PP_Assign(zoltan_->zz, inside, &process, &part),
+        "Zoltan_LB_Point_PP_Assign");
+  region_known_ = process == rank && part == rank;
+}
+
+template <int D>
+bool Decomposition<D>::box_strictly_inside(const Eigen::Matrix<double, D, 1>& x, double r) const {
+  if (!region_known_) return false;
+  for (int a = 0; a < D; ++a)
+    if (!(x[a] - r > region_lo_[a] && x[a] + r < region_hi_[a])) return false;
+  return true;
+}
+
+template <int D>
+std::optional<bool> Decomposition<D>::in_own_region(const Eigen::Matrix<double, D, 1>& x) const {
+  if (!region_known_) return std::nullopt;
+  if (box_strictly_inside(x, 0.0)) return true;
+  for (int a = 0; a < D; ++a)
+    if (x[a] < region_lo_[a] || x[a] > region_hi_[a]) return false;
+  return std::nullopt;
+}
+
+template <int D>
 int Decomposition<D>::owner_of(const Eigen::Matrix<double, D, 1>& x) const {
+  if (box_strictly_inside(x, 0.0)) return zoltan_->processes.rank;
   double coordinates[3] = {0.0, 0.0, 0.0};
   for (int a = 0; a < D; ++a) coordinates[a] = x[a];
   int process = -1, part = -1;
@@ -286,11 +349,23 @@ int Decomposition<D>::owner_of(const Eigen::Matrix<double, D, 1>& x) const {
 
 template <int D>
 MigrationReport Decomposition<D>::migrate(PointBlock<D>& points) {
-  std::vector<std::vector<int>> destinations(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) destinations[i] = {owner_of(points.position[i])};
+  const int rank = zoltan_->processes.rank;
+  std::vector<int> owner(points.size());
+  long leaving = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    owner[i] = owner_of(points.position[i]);
+    leaving += owner[i] != rank;
+  }
   MigrationReport report;
-  points =
-      exchange(points, destinations, zoltan_->processes.rank, zoltan_->processes.count, report);
+  MPI_Allreduce(MPI_IN_PLACE, &leaving, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
+  if (leaving == 0) {  // no point leaves any region: every block stays as it is
+    points.weight.clear();
+    report.owned = static_cast<long>(points.size());
+    return report;
+  }
+  std::vector<std::vector<int>> destinations(points.size());
+  for (std::size_t i = 0; i < points.size(); ++i) destinations[i] = {owner[i]};
+  points = exchange(points, destinations, rank, zoltan_->processes.count, report);
   return report;
 }
 
@@ -341,6 +416,7 @@ Halo<D> Decomposition<D>::halo(const PointBlock<D>& points, double radius) const
   std::vector<int> procs(static_cast<std::size_t>(count)), parts(static_cast<std::size_t>(count));
   std::vector<std::vector<int>> destinations(points.size());
   for (std::size_t i = 0; i < points.size(); ++i) {
+    if (box_strictly_inside(points.position[i], radius)) continue;  // reaches no other region
     double lo[3] = {0.0, 0.0, 0.0}, hi[3] = {0.0, 0.0, 0.0};
     for (int a = 0; a < D; ++a) {
       lo[a] = points.position[i][a] - radius;

@@ -13,6 +13,7 @@
 // nothing is lost or duplicated (MigrationReport counts what moved). Positions in metres.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -109,13 +110,25 @@ class Decomposition {
   Halo<D> halo(const PointBlock<D>& points, double radius) const;
   /// The process whose region holds x.
   int owner_of(const Eigen::Matrix<double, D, 1>& x) const;
+  /// Whether x is in this process's region, answered from the region's box without Zoltan:
+  /// true strictly inside, false strictly outside, nothing on its faces (ask owner_of). Safe
+  /// to call from several threads.
+  std::optional<bool> in_own_region(const Eigen::Matrix<double, D, 1>& x) const;
   /// The largest process's share against the mean (1 = even) over every process, by the points'
   /// weights where they have them, else by count.
   double imbalance(const PointBlock<D>& points) const;
 
  private:
+  /// This process's region from the cuts (RCB: a box, unbounded on the outer sides), or
+  /// none where Zoltan's parts are not the processes.
+  void keep_own_region();
+  /// Whether the box of half-width r around x lies strictly inside this process's region.
+  bool box_strictly_inside(const Eigen::Matrix<double, D, 1>& x, double r) const;
+
   struct Zoltan;
   std::unique_ptr<Zoltan> zoltan_;
+  bool region_known_ = false;
+  Eigen::Matrix<double, D, 1> region_lo_, region_hi_;
 };
 
 }  // namespace hm::parallel

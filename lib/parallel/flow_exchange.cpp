@@ -78,6 +78,7 @@ PointBlock<D> FlowExchange<D>::gather(const PointBlock<D>& owned) const {
 
 template <int D>
 bool FlowExchange<D>::owns(const ldd::Vec<D>& x) const {
+  if (const auto mine = decomposition_->in_own_region(x)) return *mine;
   // Zoltan does not say its point assignment is safe from several threads at once.
   const std::lock_guard lock(owner_mutex_);
   return decomposition_->owner_of(x) == processes_.rank;

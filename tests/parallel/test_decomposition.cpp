@@ -102,6 +102,34 @@ void expect_complete_ghosts(const PointBlock<D>& block, const PointBlock<D>& gho
   EXPECT_EQ(missing, 0) << "neighbours of own points that are not ghosts";
 }
 
+/// Every position (the points of every process, a far-away one, and the midpoints between the
+/// points) is in exactly one process's region, whether its box answers (in_own_region) or
+/// Zoltan does (owner_of), and the two agree where both answer.
+template <int D>
+void expect_regions_partition_space(const Decomposition<D>& d, const PointBlock<D>& block,
+                                    const Processes& p, const char* when) {
+  std::vector<Vec<D>> positions;
+  for (const auto& [id, x] : gather_all(block, p)) positions.push_back(x);
+  const std::size_t points = positions.size();
+  for (std::size_t k = 0; k + 1 < points; k += 7)
+    positions.push_back(0.5 * (positions[k] + positions[k + 1]));
+  positions.push_back(Vec<D>::Constant(1e3));
+  positions.push_back(Vec<D>::Constant(-1e3));
+  std::vector<int> claims(positions.size(), 0);
+  int disagreements = 0;
+  for (std::size_t k = 0; k < positions.size(); ++k) {
+    const bool zoltan = d.owner_of(positions[k]) == p.rank;
+    const auto box = d.in_own_region(positions[k]);
+    disagreements += box.has_value() && *box != zoltan;
+    claims[k] = box.value_or(zoltan) ? 1 : 0;
+  }
+  MPI_Allreduce(MPI_IN_PLACE, claims.data(), static_cast<int>(claims.size()), MPI_INT, MPI_SUM,
+                MPI_COMM_WORLD);
+  EXPECT_EQ(disagreements, 0) << when;
+  EXPECT_EQ(std::count(claims.begin(), claims.end(), 1), static_cast<long>(claims.size()))
+      << when << ": positions in no region or in several";
+}
+
 template <int D>
 void run_decomposition(double dx) {
   const Processes p = processes();
@@ -111,6 +139,7 @@ void run_decomposition(double dx) {
 
   Decomposition<D> d(block);
   expect_owned_once(d, block, total, p, "after the decomposition");
+  expect_regions_partition_space(d, block, p, "after the decomposition");
   EXPECT_LE(d.imbalance(block), 1.02);
 
   // Every point moves up to 2 dx (more than a step does): the few that left are migrated.
@@ -172,6 +201,7 @@ void run_decomposition(double dx) {
   }
   d.balance(block);
   expect_owned_once(d, block, total, p, "after the rebalance");
+  expect_regions_partition_space(d, block, p, "after the rebalance");
   EXPECT_LE(d.imbalance(block), 1.02);
   expect_complete_ghosts(block, d.ghosts(block, radius), radius, p);
 }
