@@ -338,8 +338,6 @@ class PetscSolver final : public LinearSolver {
     return m;
   }
 
-  /// Makes `a` the operator. With `with_preconditioner_matrix` the hierarchy is (re)built on
-  /// amg_matrix(a, amg_drop); without, the one built for an earlier matrix stays.
   /// A matrix replaced, destroyed (then its arrays freed) once KSPSetOperators has let go.
   struct Replaced {
     Mat matrix = nullptr;
@@ -349,6 +347,8 @@ class PetscSolver final : public LinearSolver {
     }
   };
 
+  /// Makes `a` the operator. With `with_preconditioner_matrix` the hierarchy is (re)built on
+  /// amg_matrix(a, amg_drop); without, the one built for an earlier matrix stays.
   void set_operators(const CsrMatrix& a, bool with_preconditioner_matrix) {
     Replaced old_matrix, old_preconditioner_matrix;
     old_matrix.matrix = std::exchange(matrix_, nullptr);
