@@ -66,6 +66,77 @@ void list_points(void* data, int, int, ZOLTAN_ID_PTR global, ZOLTAN_ID_PTR local
   *error = ZOLTAN_OK;
 }
 
+/// Sends each point i with owner[i] ≠ rank to that process; the others stay where they are, in
+/// their order (moved up over the ones sent, not copied), and those received follow by
+/// sending rank, in the sender's order — exchange()'s result for one destination a point.
+/// Weights are not carried. `report` counts the points sent away and received.
+template <int D>
+void send_to_owners(PointBlock<D>& points, const std::vector<int>& owner, int rank, int count,
+                    MigrationReport& report) {
+  const int width = points.width, per_point = D + width;
+  std::vector<int> send_points(static_cast<std::size_t>(count), 0);
+  for (int p : owner)
+    if (p != rank) ++send_points[static_cast<std::size_t>(p)];
+  std::vector<int> receive_points(static_cast<std::size_t>(count), 0);
+  MPI_Alltoall(send_points.data(), 1, MPI_INT, receive_points.data(), 1, MPI_INT, MPI_COMM_WORLD);
+  std::vector<int> send_start(static_cast<std::size_t>(count), 0),
+      receive_start(static_cast<std::size_t>(count), 0);
+  std::exclusive_scan(send_points.begin(), send_points.end(), send_start.begin(), 0);
+  std::exclusive_scan(receive_points.begin(), receive_points.end(), receive_start.begin(), 0);
+  const int sent = std::accumulate(send_points.begin(), send_points.end(), 0);
+  const int received = std::accumulate(receive_points.begin(), receive_points.end(), 0);
+
+  std::vector<double> send_values(static_cast<std::size_t>(sent) * per_point);
+  std::vector<std::int64_t> send_ids(static_cast<std::size_t>(sent));
+  std::vector<int> cursor = send_start;
+  std::size_t kept = 0;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double* f = points.fields.data() + i * static_cast<std::size_t>(width);
+    if (owner[i] == rank) {  // point i moves up to slot `kept` (≤ i: already read)
+      if (kept != i) {
+        points.position[kept] = points.position[i];
+        points.id[kept] = points.id[i];
+        std::copy_n(f, width, points.fields.data() + kept * static_cast<std::size_t>(width));
+      }
+      ++kept;
+      continue;
+    }
+    const auto slot = static_cast<std::size_t>(cursor[static_cast<std::size_t>(owner[i])]++);
+    send_ids[slot] = points.id[i];
+    double* v = &send_values[slot * static_cast<std::size_t>(per_point)];
+    for (int a = 0; a < D; ++a) v[a] = points.position[i][a];
+    std::copy_n(f, width, v + D);
+  }
+  points.position.resize(kept);
+  points.id.resize(kept);
+  points.fields.resize(kept * static_cast<std::size_t>(width));
+  points.weight.clear();
+
+  std::vector<std::int64_t> receive_ids(static_cast<std::size_t>(received));
+  MPI_Alltoallv(send_ids.data(), send_points.data(), send_start.data(), MPI_INT64_T,
+                receive_ids.data(), receive_points.data(), receive_start.data(), MPI_INT64_T,
+                MPI_COMM_WORLD);
+  for (int q = 0; q < count; ++q) {
+    send_points[static_cast<std::size_t>(q)] *= per_point;
+    send_start[static_cast<std::size_t>(q)] *= per_point;
+    receive_points[static_cast<std::size_t>(q)] *= per_point;
+    receive_start[static_cast<std::size_t>(q)] *= per_point;
+  }
+  std::vector<double> receive_values(static_cast<std::size_t>(received) * per_point);
+  MPI_Alltoallv(send_values.data(), send_points.data(), send_start.data(), MPI_DOUBLE,
+                receive_values.data(), receive_points.data(), receive_start.data(), MPI_DOUBLE,
+                MPI_COMM_WORLD);
+  for (int r = 0; r < received; ++r) {
+    const double* v = &receive_values[static_cast<std::size_t>(r) * per_point];
+    Eigen::Matrix<double, D, 1> x;
+    for (int a = 0; a < D; ++a) x[a] = v[a];
+    points.add(x, receive_ids[static_cast<std::size_t>(r)], v + D);
+  }
+  report.sent = sent;
+  report.received = received;
+  report.owned = static_cast<long>(points.size());
+}
+
 template <int D>
 int dimension(void*, int* error) {
   *error = ZOLTAN_OK;
@@ -349,23 +420,10 @@ int Decomposition<D>::owner_of(const Eigen::Matrix<double, D, 1>& x) const {
 
 template <int D>
 MigrationReport Decomposition<D>::migrate(PointBlock<D>& points) {
-  const int rank = zoltan_->processes.rank;
   std::vector<int> owner(points.size());
-  long leaving = 0;
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    owner[i] = owner_of(points.position[i]);
-    leaving += owner[i] != rank;
-  }
+  for (std::size_t i = 0; i < points.size(); ++i) owner[i] = owner_of(points.position[i]);
   MigrationReport report;
-  MPI_Allreduce(MPI_IN_PLACE, &leaving, 1, MPI_LONG, MPI_SUM, MPI_COMM_WORLD);
-  if (leaving == 0) {  // no point leaves any region: every block stays as it is
-    points.weight.clear();
-    report.owned = static_cast<long>(points.size());
-    return report;
-  }
-  std::vector<std::vector<int>> destinations(points.size());
-  for (std::size_t i = 0; i < points.size(); ++i) destinations[i] = {owner[i]};
-  points = exchange(points, destinations, rank, zoltan_->processes.count, report);
+  send_to_owners(points, owner, zoltan_->processes.rank, zoltan_->processes.count, report);
   return report;
 }
 
