@@ -66,6 +66,72 @@ void list_points(void* data, int, int, ZOLTAN_ID_PTR global, ZOLTAN_ID_PTR local
   *error = ZOLTAN_OK;
 }
 
+/// Points bound for other processes, grouped by destination as MPI_Alltoallv sends them: an id
+/// and D + width doubles (position, fields) a point.
+template <int D>
+class Outbox {
+ public:
+  /// Room for counts[q] points to process q.
+  Outbox(std::vector<int> counts, int width)
+      : counts_(std::move(counts)), starts_(counts_.size(), 0), width_(width) {
+    std::exclusive_scan(counts_.begin(), counts_.end(), starts_.begin(), 0);
+    cursor_ = starts_;
+    const auto total = static_cast<std::size_t>(std::accumulate(counts_.begin(), counts_.end(), 0));
+    ids_.resize(total);
+    values_.resize(total * static_cast<std::size_t>(per_point()));
+  }
+
+  int size() const { return static_cast<int>(ids_.size()); }
+
+  void pack(int process, const Eigen::Matrix<double, D, 1>& x, std::int64_t id,
+            const double* fields) {
+    const auto slot = static_cast<std::size_t>(cursor_[static_cast<std::size_t>(process)]++);
+    ids_[slot] = id;
+    double* v = &values_[slot * static_cast<std::size_t>(per_point())];
+    for (int a = 0; a < D; ++a) v[a] = x[a];
+    std::copy_n(fields, width_, v + D);
+  }
+
+  /// Sends each process what was packed for it and appends what the others sent to `into`, by
+  /// sending rank and in the sender's order. Collective. Returns the number of points received.
+  int deliver(PointBlock<D>& into) const {
+    std::vector<int> receive_counts(counts_.size(), 0), receive_starts(counts_.size(), 0);
+    MPI_Alltoall(counts_.data(), 1, MPI_INT, receive_counts.data(), 1, MPI_INT, MPI_COMM_WORLD);
+    std::exclusive_scan(receive_counts.begin(), receive_counts.end(), receive_starts.begin(), 0);
+    const int received = std::accumulate(receive_counts.begin(), receive_counts.end(), 0);
+    std::vector<std::int64_t> ids(static_cast<std::size_t>(received));
+    MPI_Alltoallv(ids_.data(), counts_.data(), starts_.data(), MPI_INT64_T, ids.data(),
+                  receive_counts.data(), receive_starts.data(), MPI_INT64_T, MPI_COMM_WORLD);
+    const auto scaled = [this](std::vector<int> v) {
+      for (int& x : v) x *= per_point();
+      return v;
+    };
+    std::vector<double> values(static_cast<std::size_t>(received) * per_point());
+    MPI_Alltoallv(values_.data(), scaled(counts_).data(), scaled(starts_).data(), MPI_DOUBLE,
+                  values.data(), scaled(receive_counts).data(), scaled(receive_starts).data(),
+                  MPI_DOUBLE, MPI_COMM_WORLD);
+    const std::size_t held = into.size() + static_cast<std::size_t>(received);
+    into.position.reserve(held);
+    into.id.reserve(held);
+    into.fields.reserve(held * static_cast<std::size_t>(width_));
+    for (int r = 0; r < received; ++r) {
+      const double* v = &values[static_cast<std::size_t>(r) * per_point()];
+      Eigen::Matrix<double, D, 1> x;
+      for (int a = 0; a < D; ++a) x[a] = v[a];
+      into.add(x, ids[static_cast<std::size_t>(r)], v + D);
+    }
+    return received;
+  }
+
+ private:
+  int per_point() const { return D + width_; }
+
+  std::vector<int> counts_, starts_, cursor_;
+  int width_;
+  std::vector<std::int64_t> ids_;
+  std::vector<double> values_;
+};
+
 /// Sends each point i with owner[i] ≠ rank to that process; the others stay where they are, in
 /// their order (moved up over the ones sent, not copied), and those received follow by
 /// sending rank, in the sender's order — exchange()'s result for one destination a point.
@@ -73,67 +139,28 @@ void list_points(void* data, int, int, ZOLTAN_ID_PTR global, ZOLTAN_ID_PTR local
 template <int D>
 void send_to_owners(PointBlock<D>& points, const std::vector<int>& owner, int rank, int count,
                     MigrationReport& report) {
-  const int width = points.width, per_point = D + width;
-  std::vector<int> send_points(static_cast<std::size_t>(count), 0);
+  const auto width = static_cast<std::size_t>(points.width);
+  std::vector<int> leaving(static_cast<std::size_t>(count), 0);
   for (int p : owner)
-    if (p != rank) ++send_points[static_cast<std::size_t>(p)];
-  std::vector<int> receive_points(static_cast<std::size_t>(count), 0);
-  MPI_Alltoall(send_points.data(), 1, MPI_INT, receive_points.data(), 1, MPI_INT, MPI_COMM_WORLD);
-  std::vector<int> send_start(static_cast<std::size_t>(count), 0),
-      receive_start(static_cast<std::size_t>(count), 0);
-  std::exclusive_scan(send_points.begin(), send_points.end(), send_start.begin(), 0);
-  std::exclusive_scan(receive_points.begin(), receive_points.end(), receive_start.begin(), 0);
-  const int sent = std::accumulate(send_points.begin(), send_points.end(), 0);
-  const int received = std::accumulate(receive_points.begin(), receive_points.end(), 0);
-
-  std::vector<double> send_values(static_cast<std::size_t>(sent) * per_point);
-  std::vector<std::int64_t> send_ids(static_cast<std::size_t>(sent));
-  std::vector<int> cursor = send_start;
+    if (p != rank) ++leaving[static_cast<std::size_t>(p)];
+  Outbox<D> outbox(std::move(leaving), points.width);
   std::size_t kept = 0;
   for (std::size_t i = 0; i < points.size(); ++i) {
-    const double* f = points.fields.data() + i * static_cast<std::size_t>(width);
-    if (owner[i] == rank) {  // point i moves up to slot `kept` (≤ i: already read)
-      if (kept != i) {
-        points.position[kept] = points.position[i];
-        points.id[kept] = points.id[i];
-        std::copy_n(f, width, points.fields.data() + kept * static_cast<std::size_t>(width));
-      }
-      ++kept;
-      continue;
+    const double* f = points.fields.data() + i * width;
+    if (owner[i] != rank) {
+      outbox.pack(owner[i], points.position[i], points.id[i], f);
+    } else if (kept++ != i) {  // moves up to slot kept − 1 (< i: already read)
+      points.position[kept - 1] = points.position[i];
+      points.id[kept - 1] = points.id[i];
+      std::copy_n(f, width, points.fields.data() + (kept - 1) * width);
     }
-    const auto slot = static_cast<std::size_t>(cursor[static_cast<std::size_t>(owner[i])]++);
-    send_ids[slot] = points.id[i];
-    double* v = &send_values[slot * static_cast<std::size_t>(per_point)];
-    for (int a = 0; a < D; ++a) v[a] = points.position[i][a];
-    std::copy_n(f, width, v + D);
   }
   points.position.resize(kept);
   points.id.resize(kept);
-  points.fields.resize(kept * static_cast<std::size_t>(width));
+  points.fields.resize(kept * width);
   points.weight.clear();
-
-  std::vector<std::int64_t> receive_ids(static_cast<std::size_t>(received));
-  MPI_Alltoallv(send_ids.data(), send_points.data(), send_start.data(), MPI_INT64_T,
-                receive_ids.data(), receive_points.data(), receive_start.data(), MPI_INT64_T,
-                MPI_COMM_WORLD);
-  for (int q = 0; q < count; ++q) {
-    send_points[static_cast<std::size_t>(q)] *= per_point;
-    send_start[static_cast<std::size_t>(q)] *= per_point;
-    receive_points[static_cast<std::size_t>(q)] *= per_point;
-    receive_start[static_cast<std::size_t>(q)] *= per_point;
-  }
-  std::vector<double> receive_values(static_cast<std::size_t>(received) * per_point);
-  MPI_Alltoallv(send_values.data(), send_points.data(), send_start.data(), MPI_DOUBLE,
-                receive_values.data(), receive_points.data(), receive_start.data(), MPI_DOUBLE,
-                MPI_COMM_WORLD);
-  for (int r = 0; r < received; ++r) {
-    const double* v = &receive_values[static_cast<std::size_t>(r) * per_point];
-    Eigen::Matrix<double, D, 1> x;
-    for (int a = 0; a < D; ++a) x[a] = v[a];
-    points.add(x, receive_ids[static_cast<std::size_t>(r)], v + D);
-  }
-  report.sent = sent;
-  report.received = received;
+  report.sent = outbox.size();
+  report.received = outbox.deliver(points);
   report.owned = static_cast<long>(points.size());
 }
 
@@ -159,68 +186,28 @@ template <int D>
 PointBlock<D> exchange(const PointBlock<D>& points,
                        const std::vector<std::vector<int>>& destinations, int rank, int count,
                        MigrationReport& report) {
-  const int per_point = D + points.width;  // doubles
-  std::vector<int> send_points(static_cast<std::size_t>(count), 0);
+  std::vector<int> counts(static_cast<std::size_t>(count), 0);
   for (const auto& to : destinations)
-    for (int p : to) ++send_points[static_cast<std::size_t>(p)];
-  const auto staying = static_cast<std::size_t>(send_points[static_cast<std::size_t>(rank)]);
-  send_points[static_cast<std::size_t>(rank)] = 0;
-  std::vector<int> receive_points(static_cast<std::size_t>(count), 0);
-  MPI_Alltoall(send_points.data(), 1, MPI_INT, receive_points.data(), 1, MPI_INT, MPI_COMM_WORLD);
-
-  std::vector<int> send_start(static_cast<std::size_t>(count), 0),
-      receive_start(static_cast<std::size_t>(count), 0);
-  std::exclusive_scan(send_points.begin(), send_points.end(), send_start.begin(), 0);
-  std::exclusive_scan(receive_points.begin(), receive_points.end(), receive_start.begin(), 0);
-  const int sent = std::accumulate(send_points.begin(), send_points.end(), 0);
-  const int received = std::accumulate(receive_points.begin(), receive_points.end(), 0);
-
+    for (int p : to) ++counts[static_cast<std::size_t>(p)];
+  const auto staying = static_cast<std::size_t>(counts[static_cast<std::size_t>(rank)]);
+  counts[static_cast<std::size_t>(rank)] = 0;
+  Outbox<D> outbox(std::move(counts), points.width);
   PointBlock<D> out;
   out.width = points.width;
-  const std::size_t held = staying + static_cast<std::size_t>(received);
-  out.position.reserve(held);
-  out.id.reserve(held);
-  out.fields.reserve(held * static_cast<std::size_t>(points.width));
-  std::vector<double> send_values(static_cast<std::size_t>(sent) * per_point);
-  std::vector<std::int64_t> send_ids(static_cast<std::size_t>(sent));
-  std::vector<int> cursor = send_start;
-  for (std::size_t i = 0; i < points.size(); ++i)
+  out.position.reserve(staying);
+  out.id.reserve(staying);
+  out.fields.reserve(staying * static_cast<std::size_t>(points.width));
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const double* f = points.fields.data() + i * static_cast<std::size_t>(points.width);
     for (int p : destinations[i]) {
-      const double* f =
-          points.width > 0 ? &points.fields[i * static_cast<std::size_t>(points.width)] : nullptr;
-      if (p == rank) {
+      if (p == rank)
         out.add(points.position[i], points.id[i], f);
-        continue;
-      }
-      const auto slot = static_cast<std::size_t>(cursor[static_cast<std::size_t>(p)]++);
-      send_ids[slot] = points.id[i];
-      double* v = &send_values[slot * static_cast<std::size_t>(per_point)];
-      for (int a = 0; a < D; ++a) v[a] = points.position[i][a];
-      for (int k = 0; k < points.width; ++k) v[D + k] = f[k];
+      else
+        outbox.pack(p, points.position[i], points.id[i], f);
     }
-
-  std::vector<std::int64_t> receive_ids(static_cast<std::size_t>(received));
-  MPI_Alltoallv(send_ids.data(), send_points.data(), send_start.data(), MPI_INT64_T,
-                receive_ids.data(), receive_points.data(), receive_start.data(), MPI_INT64_T,
-                MPI_COMM_WORLD);
-  auto scaled = [per_point](std::vector<int> v) {
-    for (int& x : v) x *= per_point;
-    return v;
-  };
-  std::vector<double> receive_values(static_cast<std::size_t>(received) * per_point);
-  const auto send_counts = scaled(send_points), send_offsets = scaled(send_start);
-  const auto receive_counts = scaled(receive_points), receive_offsets = scaled(receive_start);
-  MPI_Alltoallv(send_values.data(), send_counts.data(), send_offsets.data(), MPI_DOUBLE,
-                receive_values.data(), receive_counts.data(), receive_offsets.data(), MPI_DOUBLE,
-                MPI_COMM_WORLD);
-  for (int r = 0; r < received; ++r) {
-    const double* v = &receive_values[static_cast<std::size_t>(r) * per_point];
-    Eigen::Matrix<double, D, 1> x;
-    for (int a = 0; a < D; ++a) x[a] = v[a];
-    out.add(x, receive_ids[static_cast<std::size_t>(r)], v + D);
   }
-  report.sent = sent;
-  report.received = received;
+  report.sent = outbox.size();
+  report.received = outbox.deliver(out);
   report.owned = static_cast<long>(out.size());
   return out;
 }
