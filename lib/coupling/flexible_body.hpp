@@ -24,9 +24,11 @@
 //      with ā = S·F + r (linear modes: S = diag κ, κ and r from the CFPI coefficients, exact;
 //      a nonlinear model: its linearisation about the predictor), the fluid a wall acceleration ā
 //      with F ≈ F_k − M̂(ā − ā_k), so (I + S M̂) ā_{k+1} = S(F_k + M̂ ā_k) + r. With an exact
-//      M̂ and a linear PPE one iteration converges; the no-tension pass makes it nonlinear, and
-//      M̂ lags the geometry, so the Jacobian −M̂ is corrected by Broyden updates from the
-//      iterates of the step, and a step whose residual grew is halved;
+//      M̂ and a linear PPE one iteration converges; the no-tension pass makes it nonlinear, so
+//      only the first four solves of a step release wall nodes in tension and the later ones
+//      keep their set (ldd::TensionRelease::kept: linear again); M̂ lags the geometry, so the
+//      Jacobian −M̂ is corrected by Broyden updates from the iterates of the step, and a step
+//      whose residual grew is halved;
 //   3. the flow's step finishes; corrector: the model's step on the load the fluid produced
 //      (exact CFPI for linear modes; the wall positions the fluid used lag by O(Δt²·ΔF)).
 // M̂_jk = −s·Φ_jᵀ f(p_k), p_k the PPE's answer to a unit acceleration of mode k alone

@@ -416,9 +416,11 @@ const std::vector<KeyDecl>& scene_keys() {
               simulate_stage),
       boolean("coupling.release_tension", "false",
               "release the structure's wall nodes in tension (p < 0 → p = 0, as on rigid walls "
-              "with solver.release_wall_tension): a separation model, but a contact "
-              "nonlinearity the sub-iterations converge poorly on (the elastic gate diverged "
-              "with it at dx = 5 mm); off, the fluid holds on to the structure",
+              "with solver.release_wall_tension): the flow separates from the structure's edges "
+              "and free ends. The strong scheme releases afresh in the first four PPE solves of a "
+              "step and keeps that set in the later ones, so that its sub-iterations converge. "
+              "Off, the fluid holds on to the structure, and its suction at a sharp edge follows "
+              "how densely the wall is sampled (pipelines/dambreak_elastic_plate/README.md)",
               simulate_stage),
       text("coupling.moves_with", "\"\"", {},
            "name of the [[wall]] in motion (sway, roll or a table) the structure is clamped to: "

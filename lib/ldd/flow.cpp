@@ -317,7 +317,7 @@ FlowSolver<D>::FlowSolver(std::vector<WallMesh<D>> walls, std::span<const Vec<D>
   std::vector<Vec<D>> viscous;
   const auto predicted = predict(dt, viscous);
   StepMonitor m;
-  project(dt, predicted, viscous, m);
+  project(dt, predicted, viscous, TensionRelease::fresh, m);
   if (!m.ppe_converged)
     numerical_error(
         "flow: the initial pressure solve did not converge ({} iterations, residual "
@@ -408,10 +408,14 @@ void FlowSolver<D>::restore(FlowState<D> s) {
   // The lists of the last step rebuilt where they were not carried: built from the positions
   // the step ended with (a step does not move points after its neighbour search), as it built
   // them.
-  if (exchange_ || !with_lists) rebuild_neighbours();
+  // The wall-node weights with them (over processes the owners' weights reach the ghosts there:
+  // a ghost's own estimate misses the nodes beyond the halo).
+  if (exchange_ || !with_lists)
+    rebuild_neighbours();
+  else
+    update_node_weights();
   // The operators of the last step are not carried between steps; those of the restored
   // points keep acceleration_pressure usable right away.
-  update_node_weights();
   ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators, node_weight_);
 }
 
@@ -529,10 +533,11 @@ void FlowSolver<D>::begin_step(double dt) {
 }
 
 template <int D>
-void FlowSolver<D>::solve_pressure() {
+void FlowSolver<D>::solve_pressure(TensionRelease release) {
   HM_ASSERT(in_step(), "flow: solve_pressure outside a step");
   points_.type = pending_types_;  // undo the tension release of an earlier solve of this step
-  project(pending_dt_, pending_predicted_, pending_viscous_, pending_);
+  if (release == TensionRelease::fresh) released_.clear();
+  project(pending_dt_, pending_predicted_, pending_viscous_, release, pending_);
 }
 
 template <int D>
@@ -912,7 +917,8 @@ void FlowSolver<D>::solve_implicit_viscosity(double dt, std::vector<Vec<D>>& pre
 
 template <int D>
 void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
-                            std::span<const Vec<D>> viscous, StepMonitor& m) {
+                            std::span<const Vec<D>> viscous, TensionRelease release,
+                            StepMonitor& m) {
   const auto& o = options_;
   auto t = Clock::now();
   PpeOptions<D> po;
@@ -928,13 +934,24 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
   if (o.surface_offset) set_surface_pressure(data.dirichlet);
   if (exchange_) {
     lap(t, m.seconds.ppe_assembly);
-    project_distributed(data, m);
+    project_distributed(data, release, m);
     return;
   }
-  const int passes = o.release_wall_tension ? 2 : 1;
+  const bool may_release = release == TensionRelease::fresh;
+  const int passes = may_release && o.release_wall_tension ? 2 : 1;
   auto system = assemble_poisson<D>(points_, neighbours_, ops_, data, o.dx);
-  lap(t, m.seconds.ppe_assembly);
   std::vector<Index> released;  // wall nodes made p = 0 by the last pass
+  if (!may_release && !released_.empty()) {
+    // The step's released nodes, as the re-solve of the fresh rule makes them: on the step's
+    // matrix (its preconditioner kept), their rows x = 0.
+    released = released_;
+    for (const Index i : released) points_.type[i] = PointType::surface;
+    if (!fix_at_zero(system, released)) {
+      system = assemble_poisson<D>(points_, neighbours_, ops_, data, o.dx);
+      released.clear();
+    }
+  }
+  lap(t, m.seconds.ppe_assembly);
   for (int pass = 0; pass < passes; ++pass) {
     std::vector<double> warm_start;
     if (ppe_observer_) warm_start = points_.pressure;
@@ -954,6 +971,7 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
     m.ppe_failure = report.failure;
     m.ppe_passes = pass + 1;
     if (!report.converged) return;
+    if (!may_release) break;
     // No tension at walls (§0.2 item 6): nodes pulling on the fluid become Dirichlet p = 0.
     released.clear();
     for (Index i = 0; i < points_.size(); ++i)
@@ -962,6 +980,7 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
         released.push_back(i);
       }
     if (released.empty() || pass + 1 == passes) break;
+    released_.insert(released_.end(), released.begin(), released.end());  // fixed in the re-solve
     if (!fix_at_zero(system, released)) {
       system = assemble_poisson<D>(points_, neighbours_, ops_, data, o.dx);
       released.clear();  // Dirichlet in the new system, not fixed unknowns
@@ -1007,23 +1026,46 @@ bool FlowSolver<D>::set_up_distributed(const linsolve::CsrMatrix& matrix) {
 }
 
 template <int D>
-void FlowSolver<D>::project_distributed(PoissonData& data, StepMonitor& m) {
+void FlowSolver<D>::project_distributed(PoissonData& data, TensionRelease release, StepMonitor& m) {
   // Each process assembles the rows of its unknowns of the one system (ldd/ppe.hpp), with
   // global column numbers, and the solver runs over the processes. As in one piece, wall nodes
   // in tension are released and the system solved again on the same preconditioner, their rows
   // made x = 0 (fix_at_zero).
   auto t = Clock::now();
   auto [rows, global] = assemble_distributed(data);
+  const auto count = static_cast<Index>(rows.point_of.size());
+  std::vector<Index> row_of(static_cast<std::size_t>(owned_), -1);
+  for (Index r = 0; r < count; ++r) row_of[rows.point_of[r]] = r;
+  const auto fix_rows = [&](std::span<const Index> nodes) {
+    for (const Index i : nodes) {  // the row becomes x = 0; its column stays
+      const Index r = row_of[i];
+      HM_ASSERT(r >= 0, "flow: released wall node {} is not an unknown", i);
+      for (linsolve::CsrMatrix::InnerIterator e(rows.matrix, r); e; ++e)
+        e.valueRef() = e.col() == global[static_cast<std::size_t>(i)] ? 1.0 : 0.0;
+      rows.rhs[r] = 0.0;
+    }
+  };
+  const bool may_release = release == TensionRelease::fresh;
+  std::vector<Index> released;
+  // Every process takes the same branch: whether any process has rows fixed.
+  bool rows_fixed = false;
+  if (!may_release) {
+    released = released_;  // the step's released nodes: their rows x = 0, the step's matrix
+    for (const Index i : released) {
+      points_.type[i] = PointType::surface;
+      points_.pressure[i] = 0.0;
+    }
+    fix_rows(released);
+    rows_fixed = total(static_cast<std::int64_t>(released.size())) > 0;
+  }
   lap(t, m.seconds.ppe_assembly);
 
-  const int passes = options_.release_wall_tension ? 2 : 1;
-  std::vector<Index> released;
+  const int passes = may_release && options_.release_wall_tension ? 2 : 1;
   for (int pass = 0; pass < passes; ++pass) {
-    const auto count = static_cast<Index>(rows.point_of.size());
     Eigen::VectorXd x(count);
     for (Index r = 0; r < count; ++r) x[r] = points_.pressure[rows.point_of[r]];
     // reuse_for and setup agree over the processes: every process takes the same branch.
-    bool ready = pass > 0 && distributed_ppe_->reuse_for(rows.matrix);
+    bool ready = (pass > 0 || rows_fixed) && distributed_ppe_->reuse_for(rows.matrix);
     if (!ready) ready = set_up_distributed(rows.matrix);
     const auto stats = ready ? distributed_ppe_->solve(rows.rhs, x) : linsolve::SolveStats{};
     lap(t, m.seconds.ppe_solve);
@@ -1041,10 +1083,8 @@ void FlowSolver<D>::project_distributed(PoissonData& data, StepMonitor& m) {
     if (m.ppe_converged || x.allFinite())
       for (Index r = 0; r < count; ++r) points_.pressure[rows.point_of[r]] = x[r];
     for (const Index i : released) points_.pressure[i] = 0.0;
-    if (!m.ppe_converged) break;
+    if (!m.ppe_converged || !may_release) break;
     // No tension at walls (§0.2 item 6).
-    std::vector<Index> row_of(static_cast<std::size_t>(owned_), -1);
-    for (Index r = 0; r < count; ++r) row_of[rows.point_of[r]] = r;
     released.clear();
     for (Index i = 0; i < owned_; ++i)
       if (points_.type[i] == PointType::wall && points_.pressure[i] < 0.0 && releases_tension(i)) {
@@ -1053,12 +1093,8 @@ void FlowSolver<D>::project_distributed(PoissonData& data, StepMonitor& m) {
         released.push_back(i);
       }
     if (total(static_cast<std::int64_t>(released.size())) == 0 || pass + 1 == passes) break;
-    for (const Index i : released) {  // the row becomes x = 0; its column stays
-      const Index r = row_of[i];
-      for (linsolve::CsrMatrix::InnerIterator e(rows.matrix, r); e; ++e)
-        e.valueRef() = e.col() == global[static_cast<std::size_t>(i)] ? 1.0 : 0.0;
-      rows.rhs[r] = 0.0;
-    }
+    released_.insert(released_.end(), released.begin(), released.end());  // fixed in the re-solve
+    fix_rows(released);
     lap(t, m.seconds.ppe_assembly);
   }
   refresh_ghosts(points_.pressure);

@@ -195,6 +195,18 @@ struct FlowState {
   Index initial_fluid = 0;
 };
 
+/// How a solve of the PPE within a step treats the wall nodes in tension (walls that release
+/// tension: WallMesh::releases_tension).
+enum class TensionRelease : std::uint8_t {
+  /// From the step's own types: nodes in tension are released (Dirichlet p = 0) and the system
+  /// solved again (§0.2 item 6).
+  fresh,
+  /// The nodes the step's fresh solves fixed at p = 0 (in their re-solve) stay fixed and no
+  /// other is released: the PPE is then linear in the walls' motion, as the strong coupling's
+  /// quasi-Newton iteration assumes.
+  kept,
+};
+
 template <int D>
 class FlowSolver {
  public:
@@ -229,7 +241,7 @@ class FlowSolver {
   /// begin_step does items 1–8 of the file comment (the walls already at t + dt),
   /// solve_pressure item 9 (repeatable, after refresh_wall_kinematics), finish_step 10–12.
   void begin_step(double dt);
-  void solve_pressure();
+  void solve_pressure(TensionRelease release = TensionRelease::fresh);
   StepMonitor finish_step();
   /// Within a step: re-reads the wall nodes' velocity and acceleration from the walls (moved by
   /// the caller with the same positions) and the wall nodes' u* that the PPE sees.
@@ -309,7 +321,7 @@ class FlowSolver {
   void set_surface_pressure(std::vector<double>& dirichlet) const;
   bool releases_tension(Index wall_node) const;  ///< its wall's releases_tension()
   void project(double dt, std::span<const Vec<D>> predicted, std::span<const Vec<D>> viscous,
-               StepMonitor& m);
+               TensionRelease release, StepMonitor& m);
   void correct(double dt, std::span<const Vec<D>> predicted);
   void smooth_velocity(double dt, double stable_step);
   void update_monitors(double dt, std::span<const Vec<D>> old_velocity, StepMonitor& m);
@@ -335,7 +347,7 @@ class FlowSolver {
   void refresh_ghost_types();
   double largest(double value) const;  ///< over the processes
   std::int64_t total(std::int64_t value) const;
-  void project_distributed(PoissonData& data, StepMonitor& m);
+  void project_distributed(PoissonData& data, TensionRelease release, StepMonitor& m);
   /// This process's rows of the PPE of `data`, their unknowns numbered over the processes (weak
   /// Neumann rows demoted: points_.type changes).
   struct DistributedPoisson {
@@ -384,6 +396,7 @@ class FlowSolver {
   StepMonitor pending_;
   std::vector<Vec<D>> pending_old_velocity_, pending_predicted_, pending_viscous_;
   std::vector<PointType> pending_types_;  ///< types before the PPE (tension release changes them)
+  std::vector<Index> released_;  ///< wall nodes the step's fresh solves fixed at p = 0 (owned)
 };
 
 }  // namespace hm::ldd
