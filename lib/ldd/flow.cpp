@@ -941,15 +941,17 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
   const int passes = may_release && o.release_wall_tension ? 2 : 1;
   auto system = assemble_poisson<D>(points_, neighbours_, ops_, data, o.dx);
   std::vector<Index> released;  // wall nodes made p = 0 by the last pass
-  if (!may_release && !released_.empty()) {
-    // The step's released nodes, as the re-solve of the fresh rule makes them: on the step's
-    // matrix (its preconditioner kept), their rows x = 0.
+  // Released nodes (types already SURFACE) get rows x = 0 on the assembled matrix, whose
+  // preconditioner then serves; a pinned system is assembled again with them Dirichlet.
+  const auto hold_at_zero = [&] {
+    if (fix_at_zero(system, released)) return;
+    system = assemble_poisson<D>(points_, neighbours_, ops_, data, o.dx);
+    released.clear();  // Dirichlet in the new system, not fixed unknowns
+  };
+  if (!may_release && !released_.empty()) {  // the step's released nodes, as its re-solves had
     released = released_;
     for (const Index i : released) points_.type[i] = PointType::surface;
-    if (!fix_at_zero(system, released)) {
-      system = assemble_poisson<D>(points_, neighbours_, ops_, data, o.dx);
-      released.clear();
-    }
+    hold_at_zero();
   }
   lap(t, m.seconds.ppe_assembly);
   for (int pass = 0; pass < passes; ++pass) {
@@ -981,10 +983,7 @@ void FlowSolver<D>::project(double dt, std::span<const Vec<D>> predicted,
       }
     if (released.empty() || pass + 1 == passes) break;
     released_.insert(released_.end(), released.begin(), released.end());  // fixed in the re-solve
-    if (!fix_at_zero(system, released)) {
-      system = assemble_poisson<D>(points_, neighbours_, ops_, data, o.dx);
-      released.clear();  // Dirichlet in the new system, not fixed unknowns
-    }
+    hold_at_zero();
     lap(t, m.seconds.ppe_assembly);
   }
   for (Index i = 0; i < points_.size(); ++i)
