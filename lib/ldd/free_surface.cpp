@@ -97,7 +97,13 @@ template <int D>
 Vec<D> across_a_sheet(const FluidMoments<D>& m, double lambda_c) {
   const double trace = m.second.trace();
   if (trace <= 0.0) return Vec<D>::Zero();
-  const Eigen::SelfAdjointEigenSolver<Mat<D>> eigen(m.second * (D / trace));
+  const Mat<D> normalised = m.second * (D / trace);
+  // The closed form's smallest eigenvalue first (most stencils are not sheets); the direction
+  // from the iterative solver, accurate also where eigenvalues are close.
+  Eigen::SelfAdjointEigenSolver<Mat<D>> eigen;
+  eigen.computeDirect(normalised, Eigen::EigenvaluesOnly);
+  if (eigen.eigenvalues()[0] >= lambda_c) return Vec<D>::Zero();
+  eigen.compute(normalised);
   if (eigen.eigenvalues()[0] >= lambda_c) return Vec<D>::Zero();
   return eigen.eigenvectors().col(0);
 }

@@ -4,6 +4,7 @@
 // (ldd/flow.cpp) runs them through the point-loop driver (ldd/point_loop.hpp) and stores the
 // results. Written as templates in the header, so that each inlines into its loop.
 // SI units throughout: positions m, velocities m/s, pressure Pa, time s.
+#include <algorithm>
 #include <limits>
 #include <optional>
 #include <span>
@@ -46,8 +47,13 @@ std::optional<Vec<D>> pbd_displacement(const Cloud<D>& c, Index i, const PbdPara
   if (!c.fluid(i)) return std::nullopt;
   Vec<D> delta = Vec<D>::Zero();
   double count = 0.0;  // pairs, a wall node counting as the wall share it stands for
+  // Most pairs are farther than d0: they are told apart on |r|² without the square root
+  // (with a margin that leaves every pair near d0 to the exact test below).
+  const double reach = std::max(p.distance, p.wall_distance) * (1.0 + 1e-9);
+  const double reach2 = reach * reach;
   for (Index j : c.neighbours.of(i)) {
     const Vec<D> r = c.x(j) - c.x(i);
+    if (r.squaredNorm() >= reach2) continue;
     const double d = r.norm();
     if (d <= 0.0) continue;
     const double w = c.ops.weight_of(j);

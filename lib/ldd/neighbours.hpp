@@ -56,6 +56,7 @@ void remove_pairs(Neighbours& nb, Drop&& drop) {
     kept[static_cast<std::size_t>(i) + 1] = c;
   }
   std::partial_sum(kept.begin(), kept.end(), kept.begin());
+  if (static_cast<std::size_t>(kept.back()) == nb.indices.size()) return;  // none dropped
   std::vector<Index> out(static_cast<std::size_t>(kept.back()));
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < n; ++i) {

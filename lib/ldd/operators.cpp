@@ -153,8 +153,11 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
       continue;
     }
     const Mat<D> M = D * A / A.trace();
-    const double lambda =
-        Eigen::SelfAdjointEigenSolver<Mat<D>>(M, Eigen::EigenvaluesOnly).eigenvalues()[0];
+    // The closed form of a 2×2 / 3×3 symmetric matrix's eigenvalues: M's are in [0, D], and
+    // only the smallest's place against λ_c matters (the iterative solver cost 2 % of a step).
+    Eigen::SelfAdjointEigenSolver<Mat<D>> eigen;
+    eigen.computeDirect(M, Eigen::EigenvaluesOnly);
+    const double lambda = eigen.eigenvalues()[0];
     ops.lambda_min[i] = lambda;
     std::uint8_t flags = 0;
     if (lambda < opt.lambda_c) {
@@ -229,7 +232,7 @@ std::vector<Mat<D>> slip_velocity_gradient(const PointSet<D>& pts, const Neighbo
   std::vector<Mat<D>> grad(static_cast<std::size_t>(n), Mat<D>::Zero());
 #pragma omp parallel for schedule(static)
   for (Index i = 0; i < n; ++i) {
-    if (ops.isolated(i)) continue;
+    if (ops.isolated(i) || pts.kind[i] == PointKind::wall) continue;
     Mat<D> s = Mat<D>::Zero();  // Σ W (u_j − u_i) ⊗ r, then ∇u = s B
     for (Index j : nb.of(i)) {
       const Vec<D> r = pts.position[j] - pts.position[i];

@@ -91,7 +91,8 @@ template <int D>
 std::vector<double> divergence(std::span<const Vec<D>> positions, const Neighbours& neighbours,
                                const Operators<D>& ops, std::span<const Vec<D>> u);
 
-/// ⟨∇u⟩_i, (∇u)_ab = ∂u_a/∂x_b, of eq. 6 for every point (zero at isolated points), with the
+/// ⟨∇u⟩_i, (∇u)_ab = ∂u_a/∂x_b, of eq. 6 for every fluid point (zero at isolated points and
+/// wall nodes, whose rows of the PPE and whose motion need none of it), with the
 /// walls seen as slip walls: across a wall node j only the normal part of the velocity
 /// difference counts, u_j − u_i → n_j n_j·(u_j − u_i) [CHOICE]. The wall node carries the
 /// no-penetration condition; its tangential velocity is the no-slip condition of the viscous

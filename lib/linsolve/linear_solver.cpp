@@ -178,47 +178,47 @@ CsrMatrix amg_matrix(const CsrMatrix& a, double drop, int first_row) {
             "amg_matrix: rows {}.. {} of a compressed matrix with {} columns", first_row,
             first_row + a.rows(), a.cols());
   if (drop == 0.0) return a;
-  // Built row by row straight into compressed storage (a's columns are sorted in each row):
-  // the setup of every PPE pays for this, so no triplets and no sort.
-  std::vector<int> starts{0}, columns;
-  std::vector<double> values;
-  columns.reserve(static_cast<std::size_t>(a.nonZeros()));
-  values.reserve(static_cast<std::size_t>(a.nonZeros()));
+  // Written row by row straight into the result's compressed storage (a's columns are sorted
+  // in each row; at most one zero diagonal is added a row): the setup of every PPE pays for
+  // this, so no triplets, no sort and no copy.
+  CsrMatrix p(a.rows(), a.cols());
+  p.resizeNonZeros(static_cast<Eigen::Index>(a.nonZeros() + a.rows()));
+  int* starts = p.outerIndexPtr();
+  int* columns = p.innerIndexPtr();
+  double* values = p.valuePtr();
+  int size = 0;
+  starts[0] = 0;
   for (int r = 0; r < a.rows(); ++r) {
     const int d = first_row + r;  // the diagonal's column
     double largest = 0.0, lumped = 0.0;
     for (CsrMatrix::InnerIterator it(a, r); it; ++it)
       if (it.col() != d) largest = std::max(largest, std::abs(it.value()));
-    std::size_t diagonal = values.size();  // where the diagonal goes if the row has none
-    bool has_diagonal = false;
+    int diagonal = -1;  // where the diagonal is
+    const auto append = [&](int column, double value) {
+      columns[size] = column;
+      values[size++] = value;
+    };
     for (CsrMatrix::InnerIterator it(a, r); it; ++it) {
       const bool small = it.col() != d && std::abs(it.value()) < drop * largest;
       if (small) {
         lumped += it.value();  // onto the diagonal: the row sum stays
         continue;
       }
-      if (!has_diagonal && it.col() >= d) {
-        has_diagonal = true;
-        diagonal = values.size();
-        if (it.col() > d) {  // a row without a stored diagonal: a zero one, lumped into
-          columns.push_back(d);
-          values.push_back(0.0);
-        }
+      if (diagonal < 0 && it.col() >= d) {
+        diagonal = size;
+        if (it.col() > d) append(d, 0.0);  // a row without a stored diagonal: a zero one
       }
-      columns.push_back(it.col());
-      values.push_back(it.value());
+      append(static_cast<int>(it.col()), it.value());
     }
-    if (!has_diagonal) {
-      diagonal = values.size();
-      columns.push_back(d);
-      values.push_back(0.0);
+    if (diagonal < 0) {
+      diagonal = size;
+      append(d, 0.0);
     }
     values[diagonal] += lumped;
-    starts.push_back(static_cast<int>(values.size()));
+    starts[r + 1] = size;
   }
-  const Eigen::Map<const CsrMatrix> view(a.rows(), a.cols(), static_cast<int>(values.size()),
-                                         starts.data(), columns.data(), values.data());
-  return CsrMatrix(view);
+  p.resizeNonZeros(size);
+  return p;
 }
 
 namespace {

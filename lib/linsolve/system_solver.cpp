@@ -16,16 +16,16 @@ SystemSolver::SystemSolver(const Strategy& strategy, const Settings& settings)
 }
 
 bool SystemSolver::same_as_set_up(const CsrMatrix& a) const {
-  return ready_ && same_matrix(a, set_up_matrix_);
+  return ready_ && same_matrix(a, *set_up_matrix_);
 }
 
 bool SystemSolver::holds(const CsrMatrix& a) const {
-  return same_as_set_up(a) || (ready_ && same_matrix(a, matrix_));
+  return same_as_set_up(a) || (ready_ && same_matrix(a, *matrix_));
 }
 
 void SystemSolver::full_setup(const CsrMatrix& a, SystemReport& report) {
-  if (&a != &matrix_) matrix_ = a;
-  ready_ = primary_->setup(matrix_);
+  if (&a != matrix_.get()) matrix_ = std::make_shared<const CsrMatrix>(a);
+  ready_ = primary_->setup(*matrix_);
   set_up_matrix_ = matrix_;
   stale_ = false;
   age_ = 0;
@@ -44,22 +44,22 @@ SystemReport SystemSolver::solve_with_primary(const CsrMatrix& a, const Eigen::V
   if (identical && stale_) {
     // Back from a matrix it served stale (a few rows fixed, keep_preconditioner) to the one
     // its preconditioner was built for: the strong coupling's next sub-iteration.
-    matrix_ = a;
+    matrix_ = set_up_matrix_;
     stale_ = false;
-    if (primary_->reuse_for(matrix_)) {
+    if (primary_->reuse_for(*matrix_)) {
       report.reused = true;
       ++counters_.identical_reuses;
     } else {
-      full_setup(matrix_, report);
+      full_setup(*matrix_, report);
     }
   } else if (identical) {
     report.reused = true;
     ++counters_.identical_reuses;
-  } else if (ready_ && a.rows() == matrix_.rows() &&
+  } else if (ready_ && a.rows() == matrix_->rows() &&
              (keep_preconditioner ||
               (strategy_.reuse.across_steps && age_ < strategy_.reuse.max_age))) {
-    matrix_ = a;
-    stale = primary_->reuse_for(matrix_);
+    matrix_ = std::make_shared<const CsrMatrix>(a);
+    stale = primary_->reuse_for(*matrix_);
     if (stale) {
       stale_ = true;
       ++age_;
@@ -67,7 +67,7 @@ SystemReport SystemSolver::solve_with_primary(const CsrMatrix& a, const Eigen::V
       report.setup_seconds += primary_->setup_seconds();
       ++counters_.stale_reuses;
     } else {
-      full_setup(matrix_, report);
+      full_setup(*matrix_, report);
     }
   } else {
     full_setup(a, report);
@@ -86,7 +86,7 @@ SystemReport SystemSolver::solve_with_primary(const CsrMatrix& a, const Eigen::V
     // The kept preconditioner no longer pays: set up for this matrix and solve again.
     report.discarded_iterations += s.iterations;
     ++counters_.rebuilds_after_growth;
-    full_setup(matrix_, report);
+    full_setup(*matrix_, report);
     x = guess;
     if (!ready_) {
       report.failure = primary_->setup_failure();
@@ -117,7 +117,7 @@ SystemReport SystemSolver::solve(const CsrMatrix& a, const Eigen::VectorXd& b, E
   report.discarded_iterations += report.iterations;
   x = guess;
   report.method = fallback_->method();
-  if (!fallback_->setup(matrix_)) {
+  if (!fallback_->setup(*matrix_)) {
     report.converged = false;
     report.iterations = 0;
     report.failure = fallback_->setup_failure();

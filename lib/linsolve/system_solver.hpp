@@ -78,8 +78,10 @@ class SystemSolver {
   Settings settings_;
   std::unique_ptr<LinearSolver> primary_;
   std::unique_ptr<LinearSolver> fallback_;
-  CsrMatrix matrix_;         ///< the matrix the primary was last given (the backends refer to it)
-  CsrMatrix set_up_matrix_;  ///< the one of the last full setup
+  /// The matrix the primary was last given (the backends refer to it) and the one of the last
+  /// full setup: one copy of the caller's matrix, shared while they are the same (a copy of a
+  /// 3-D PPE matrix cost 2.4 % of a step).
+  std::shared_ptr<const CsrMatrix> matrix_, set_up_matrix_;
   bool ready_ = false;
   bool stale_ = false;           ///< matrix_ is not the one the preconditioner was built for
   int age_ = 0;                  ///< different matrices served since the last full setup
