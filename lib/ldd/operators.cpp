@@ -1,5 +1,6 @@
 #include "ldd/operators.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include <Eigen/Cholesky>
@@ -60,15 +61,17 @@ bool wls_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index 
   return true;
 }
 
-/// Eq. 7 coefficients of point i into c; returns whether a modified weight was negative.
+/// Eq. 7 coefficients of point i into c, which holds each pair's kernel weight ω_j W_ij on
+/// entry (compute_operators' first pass: no second square root a pair); returns whether a
+/// modified weight was negative.
 template <int D>
-bool offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i, double h,
-                      const Vec<D>& Bo, std::span<const double> omega, double* c) {
+bool offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i,
+                      const Vec<D>& Bo, double* c) {
   double denominator = 0.0;
   bool negative = false;
   for (std::size_t k = 0; k < nbr.size(); ++k) {
     const Vec<D> r = x[nbr[k]] - x[i];
-    const double w = weight_at(omega, nbr[k]) * wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo));
+    const double w = c[k] * (1.0 - r.dot(Bo));
     negative = negative || w < 0.0;
     c[k] = w;
     denominator += w * r.squaredNorm();
@@ -134,12 +137,14 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
 #pragma omp parallel for schedule(dynamic, 128)
   for (Index i = 0; i < n; ++i) {
     const auto nbr = nb.of(i);
+    double* c = ops.laplacian.data() + nb.offsets[i];  // the pairs' kernel weights, then eq. 7
     Mat<D> A = Mat<D>::Zero();
     Vec<D> o = Vec<D>::Zero();
     double density = 0.0, moment = 0.0;
-    for (Index j : nbr) {
-      const Vec<D> r = x[j] - x[i];
-      const double d = r.norm(), w = ops.weight_of(j) * wendland_c2(d / h);
+    for (std::size_t k = 0; k < nbr.size(); ++k) {
+      const Vec<D> r = x[nbr[k]] - x[i];
+      const double d = r.norm(), w = ops.weight_of(nbr[k]) * wendland_c2(d / h);
+      c[k] = w;
       A.noalias() += w * r * r.transpose();
       o += w * r;
       density += w;
@@ -150,6 +155,7 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
     ops.offset_ratio[i] = moment > 0.0 ? o.norm() / moment : 1.0;
     if (static_cast<int>(nbr.size()) < min_neighbours || A.trace() <= 0.0) {
       ops.flags[i] = op_isolated;
+      std::fill(c, c + nbr.size(), 0.0);  // no Laplacian
       continue;
     }
     const Mat<D> M = D * A / A.trace();
@@ -166,9 +172,7 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
     } else {
       ops.renormalisation[i] = A.inverse();
     }
-    double* c = ops.laplacian.data() + nb.offsets[i];
-    if (offset_laplacian<D>(x, nbr, i, h, ops.renormalisation[i] * o, omega, c))
-      flags |= op_negative;
+    if (offset_laplacian<D>(x, nbr, i, ops.renormalisation[i] * o, c)) flags |= op_negative;
     const bool want_wls = opt.laplacian == LaplacianScheme::wls_everywhere ||
                           (opt.laplacian == LaplacianScheme::wls_where_needed &&
                            ((flags & op_negative) || ops.offset_ratio[i] > opt.one_sided_offset));
