@@ -521,9 +521,9 @@ void FlowSolver<D>::begin_step(double dt) {
   lap(t, m.seconds.neighbours);
   ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators, node_weight_);
   lap(t, m.seconds.operators);
-  detect_free_surface<D>(points_, neighbours_, ops_, options_.free_surface,
-                         exchange_ ? owned_ : -1);
-  mark_sparse_points_as_surface();
+  const auto surface = detect_free_surface<D>(points_, neighbours_, ops_, options_.free_surface,
+                                              exchange_ ? owned_ : -1);
+  mark_sparse_points_as_surface(surface.fluid_density);
   refresh_ghost_types();
   lap(t, m.seconds.free_surface);
   pending_predicted_ = predict(dt, pending_viscous_);
@@ -812,14 +812,14 @@ void FlowSolver<D>::update_node_weights() {
 template <int D>
 void FlowSolver<D>::classify_points() {
   ops_ = compute_operators<D>(points_.position, neighbours_, options_.operators, node_weight_);
-  detect_free_surface<D>(points_, neighbours_, ops_, options_.free_surface,
-                         exchange_ ? owned_ : -1);
-  mark_sparse_points_as_surface();
+  const auto surface = detect_free_surface<D>(points_, neighbours_, ops_, options_.free_surface,
+                                              exchange_ ? owned_ : -1);
+  mark_sparse_points_as_surface(surface.fluid_density);
   refresh_ghost_types();
 }
 
 template <int D>
-void FlowSolver<D>::mark_sparse_points_as_surface() {
+void FlowSolver<D>::mark_sparse_points_as_surface(std::span<const double> fluid_density) {
   // A fluid point whose number density is far below the lattice's is in spray or a film a few
   // points thick, even where the cone test finds neighbours all around (the middle of a droplet,
   // a film along a wall, a jet going round the open end of a wall): its Laplacian row rests on
@@ -831,11 +831,11 @@ void FlowSolver<D>::mark_sparse_points_as_surface() {
   // density below half of that (a half space next to a flat wall has ≈ 0.55 n0 of fluid).
   const double total_limit = options_.sparse_density * n0_;
   const double fluid_limit = 0.5 * total_limit;
-  const double h = support();
-  const auto cloud = this->cloud();
+  HM_ASSERT(fluid_density.size() >= static_cast<std::size_t>(owned()),
+            "flow: {} fluid densities for {} points", fluid_density.size(), owned());
   for_each_point(owned(), [&](Index i) {
     if (!is_fluid(points_, i) || points_.type[i] != PointType::interior) return;
-    if (kernels::is_sparse(cloud, i, total_limit, fluid_limit, h))
+    if (kernels::is_sparse(ops_.number_density[i], fluid_density[i], total_limit, fluid_limit))
       points_.type[i] = PointType::surface;
   });
 }

@@ -311,7 +311,8 @@ class FlowSolver {
   /// The wall nodes' quadrature weights for the operators (options().wall_node_weights).
   void update_node_weights();
   void classify_points();
-  void mark_sparse_points_as_surface();
+  /// `fluid_density`: the free surface's report's (FreeSurfaceReport::fluid_density).
+  void mark_sparse_points_as_surface(std::span<const double> fluid_density);
   std::vector<Vec<D>> predict(double dt, std::vector<Vec<D>>& viscous);
   void solve_implicit_viscosity(double dt, std::vector<Vec<D>>& predicted,
                                 const std::vector<Vec<D>>& viscous);

@@ -164,12 +164,14 @@ FreeSurfaceReport detect_free_surface(PointSet<D>& pts, const Neighbours& nb,
   const double cos_wall_cone = std::cos(opt.wall_cone_degrees * std::numbers::pi / 180.0);
   const Index n = owned < 0 ? pts.size() : owned;
   FreeSurfaceReport rep;
+  rep.fluid_density.assign(static_cast<std::size_t>(n), 0.0);
   Index candidates = 0, surface = 0, contact = 0, isolated = 0;
 #pragma omp parallel for schedule(dynamic, 256) reduction(+ : candidates, surface, contact, isolated)
   for (Index i = 0; i < n; ++i) {
     const PointType before = pts.type[i];
     if (before == PointType::inactive) continue;
     const auto m = fluid_moments<D>(pts, nb, i);
+    rep.fluid_density[i] = m.density;
     const double on = m.offset.norm();
     if (pts.kind[i] == PointKind::wall) {
       PointType t = PointType::wall;

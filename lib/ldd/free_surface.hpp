@@ -26,6 +26,8 @@
 //     deactivate_wall_nodes_beyond_fluid ran first (the default of the tests), those nodes are
 //     already inactive and item 4 finds none.
 // Fluid points with fewer than N_min neighbours become ISOLATED.
+#include <vector>
+
 #include "ldd/operators.hpp"
 
 namespace hm::ldd {
@@ -48,6 +50,9 @@ struct FreeSurfaceReport {
   Index surface = 0;       ///< fluid points marked SURFACE
   Index contact_line = 0;  ///< wall nodes marked SURFACE
   Index isolated = 0;
+  /// Each decided point's fluid-only number density Σ W(|r_ij|/h) over its fluid neighbours
+  /// (0 at inactive nodes): the sparse-point test reads it instead of summing it again.
+  std::vector<double> fluid_density;
 };
 
 /// n_0: Σ W(|r|/h) over the points of a square/cubic lattice of spacing dx within h of a point.

@@ -201,13 +201,18 @@ Clearance<D> wall_clearance(std::span<const WallMesh<D>> walls, Vec<D> x, Vec<D>
 /// Whether interior fluid point i is too sparse for a Laplacian row of its own: its number
 /// density (fluid and wall, from the operators) below `total_limit`, or its fluid-only density
 /// (Wendland C2 of support h) below `fluid_limit`.
+inline bool is_sparse(double total_density, double fluid_density, double total_limit,
+                      double fluid_limit) {
+  return total_density < total_limit || fluid_density < fluid_limit;
+}
+/// The same, the fluid-only density summed here.
 template <int D>
 bool is_sparse(const Cloud<D>& c, Index i, double total_limit, double fluid_limit, double h) {
   if (c.ops.number_density[i] < total_limit) return true;
   double fluid_density = 0.0;
   for (Index j : c.neighbours.of(i))
     if (c.fluid(j)) fluid_density += wendland_c2((c.x(j) - c.x(i)).norm() / h);
-  return fluid_density < fluid_limit;
+  return is_sparse(c.ops.number_density[i], fluid_density, total_limit, fluid_limit);
 }
 
 // ---------------------------------------------------------------------------------------------
