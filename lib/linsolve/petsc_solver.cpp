@@ -125,18 +125,6 @@ AijArrays split_rows(const CsrMatrix& a, PetscInt first, PetscInt count) {
 constexpr bool kPetscTakesCsrArrays =
     std::is_same_v<PetscInt, int> && std::is_same_v<PetscScalar, double>;
 
-/// `a`'s rows whole, as one process holds them (all "own"): a copy of its three arrays, for
-/// a PETSc whose types differ from the CsrMatrix's.
-AijArrays whole_rows(const CsrMatrix& a) {
-  const auto rows = static_cast<std::size_t>(a.rows());
-  const auto entries = static_cast<std::size_t>(a.nonZeros());
-  AijArrays s;
-  s.own_offsets.assign(a.outerIndexPtr(), a.outerIndexPtr() + rows + 1);
-  s.own_columns.assign(a.innerIndexPtr(), a.innerIndexPtr() + entries);
-  s.own_values.assign(a.valuePtr(), a.valuePtr() + entries);
-  return s;
-}
-
 /// A unique options prefix per solver, so that the options one solver sets (BoomerAMG's
 /// coarsening) never leak into another.
 std::string next_prefix() {
@@ -351,11 +339,11 @@ class PetscSolver final : public LinearSolver {
             "MatCreateMPIAIJWithSplitArrays");
       return m;
     }
-    for (Eigen::Index r = 0; r < a.rows(); ++r)
-      HM_ASSERT(std::is_sorted(a.innerIndexPtr() + a.outerIndexPtr()[r],
-                               a.innerIndexPtr() + a.outerIndexPtr()[r + 1]),
-                "petsc: row {} of the matrix has its columns out of order", r);
     if constexpr (kPetscTakesCsrArrays) {
+      for (Eigen::Index r = 0; r < a.rows(); ++r)
+        HM_ASSERT(std::is_sorted(a.innerIndexPtr() + a.outerIndexPtr()[r],
+                                 a.innerIndexPtr() + a.outerIndexPtr()[r + 1]),
+                  "petsc: row {} of the matrix has its columns out of order", r);
       arrays.reset();  // PETSc reads the arrays and never writes them: the casts are safe
       check(MatCreateSeqAIJWithArrays(comm_, n, n, const_cast<int*>(a.outerIndexPtr()),
                                       const_cast<int*>(a.innerIndexPtr()),
@@ -363,7 +351,7 @@ class PetscSolver final : public LinearSolver {
             "MatCreateSeqAIJWithArrays");
       return m;
     }
-    arrays = std::make_unique<AijArrays>(whole_rows(a));
+    arrays = std::make_unique<AijArrays>(split_rows(a, 0, n));  // all of it "own"
     auto& s = *arrays;
     check(MatCreateSeqAIJWithArrays(comm_, n, n, s.own_offsets.data(), s.own_columns.data(),
                                     s.own_values.data(), &m),
