@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
@@ -33,31 +34,47 @@ double weight_at(std::span<const double> omega, Index j) {
   return omega.empty() ? 1.0 : omega[j];
 }
 
+/// Per-thread scratch of compute_operators, kept across its points: a row's kernel weights
+/// ω_j W_ij (the clamped eq. 7 reuses them) and the WLS fit's weights and monomials (its
+/// coefficients reuse them: no second square root a pair).
+template <int D>
+struct RowScratch {
+  std::vector<double> kernel, fit_weight;
+  std::vector<Eigen::Matrix<double, wls_size<D>, 1>> monomials;
+};
+
 /// Second-order WLS Laplacian coefficients of point i into c (false if the fit is singular).
 template <int D>
 bool wls_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i, double h,
-                   std::span<const double> omega, double* c) {
+                   std::span<const double> omega, RowScratch<D>& scratch, double* c) {
   constexpr int K = wls_size<D>;
   if (static_cast<int>(nbr.size()) < K) return false;
+  scratch.fit_weight.resize(nbr.size());
+  scratch.monomials.resize(nbr.size());
+  // The normal matrix's lower triangle, the one the Cholesky factorisation reads (each entry
+  // the product the full outer product forms: (w p_a) p_b).
   Eigen::Matrix<double, K, K> G = Eigen::Matrix<double, K, K>::Zero();
-  for (Index j : nbr) {
-    const Vec<D> s = (x[j] - x[i]) / h;
+  for (std::size_t k = 0; k < nbr.size(); ++k) {
+    const Vec<D> s = (x[nbr[k]] - x[i]) / h;
     const auto p = wls_basis<D>(s);
-    G.noalias() += weight_at(omega, j) * wendland_c2(s.norm()) * p * p.transpose();
+    const double w = weight_at(omega, nbr[k]) * wendland_c2(s.norm());
+    scratch.fit_weight[k] = w;
+    scratch.monomials[k] = p;
+    const Eigen::Matrix<double, K, 1> wp = w * p;
+    for (int b = 0; b < K; ++b)
+      for (int a = b; a < K; ++a) G(a, b) += wp[a] * p[b];
   }
   Eigen::Matrix<double, K, 1> e = Eigen::Matrix<double, K, 1>::Zero();
   e.template segment<D>(D).setOnes();  // ∇²f = Σ_a H_aa = Σ_a coefficient of ½ s_a², / h²
   // Cholesky; a pivot ratio below 1e-6 (condition ≳ 1e12) means the stencil cannot resolve
   // every second derivative (points on a line or plane): no fit.
-  const Eigen::LLT<Eigen::Matrix<double, K, K>> llt(G);
+  const Eigen::LLT<Eigen::Matrix<double, K, K>, Eigen::Lower> llt(G);
   if (llt.info() != Eigen::Success) return false;
   const auto pivots = llt.matrixLLT().diagonal();
   if (pivots.minCoeff() < 1e-6 * pivots.maxCoeff()) return false;
   const Eigen::Matrix<double, K, 1> y = llt.solve(e);
-  for (std::size_t k = 0; k < nbr.size(); ++k) {
-    const Vec<D> s = (x[nbr[k]] - x[i]) / h;
-    c[k] = weight_at(omega, nbr[k]) * wendland_c2(s.norm()) * y.dot(wls_basis<D>(s)) / (h * h);
-  }
+  for (std::size_t k = 0; k < nbr.size(); ++k)
+    c[k] = scratch.fit_weight[k] * y.dot(scratch.monomials[k]) / (h * h);
   return true;
 }
 
@@ -84,16 +101,15 @@ bool offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Ind
 }
 
 /// Eq. 7 with the modified weights clamped at zero and D_i recomputed (§1.7.2 option b): every
-/// c_ij ≥ 0, so the row is diagonally dominant, at first-order accuracy.
+/// c_ij ≥ 0, so the row is diagonally dominant, at first-order accuracy. `kernel` holds each
+/// pair's ω_j W_ij.
 template <int D>
 void clamped_offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i,
-                              double h, const Vec<D>& Bo, std::span<const double> omega,
-                              double* c) {
+                              const Vec<D>& Bo, std::span<const double> kernel, double* c) {
   double denominator = 0.0;
   for (std::size_t k = 0; k < nbr.size(); ++k) {
     const Vec<D> r = x[nbr[k]] - x[i];
-    const double w =
-        std::max(0.0, weight_at(omega, nbr[k]) * wendland_c2(r.norm() / h) * (1.0 - r.dot(Bo)));
+    const double w = std::max(0.0, kernel[k] * (1.0 - r.dot(Bo)));
     c[k] = w;
     denominator += w * r.squaredNorm();
   }
@@ -134,10 +150,12 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
             omega.size(), x.size());
   ops.weight.assign(omega.begin(), omega.end());
 
-#pragma omp parallel for schedule(dynamic, 128)
+  RowScratch<D> scratch;
+#pragma omp parallel for schedule(dynamic, 128) firstprivate(scratch)
   for (Index i = 0; i < n; ++i) {
     const auto nbr = nb.of(i);
     double* c = ops.laplacian.data() + nb.offsets[i];  // the pairs' kernel weights, then eq. 7
+    scratch.kernel.resize(nbr.size());
     Mat<D> A = Mat<D>::Zero();
     Vec<D> o = Vec<D>::Zero();
     double density = 0.0, moment = 0.0;
@@ -145,6 +163,7 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
       const Vec<D> r = x[nbr[k]] - x[i];
       const double d = r.norm(), w = ops.weight_of(nbr[k]) * wendland_c2(d / h);
       c[k] = w;
+      scratch.kernel[k] = w;
       A.noalias() += w * r * r.transpose();
       o += w * r;
       density += w;
@@ -176,7 +195,7 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
     const bool want_wls = opt.laplacian == LaplacianScheme::wls_everywhere ||
                           (opt.laplacian == LaplacianScheme::wls_where_needed &&
                            ((flags & op_negative) || ops.offset_ratio[i] > opt.one_sided_offset));
-    if (want_wls && wls_laplacian<D>(x, nbr, i, h, omega, c)) flags |= op_wls;
+    if (want_wls && wls_laplacian<D>(x, nbr, i, h, omega, scratch, c)) flags |= op_wls;
     // A row whose diagonal −Σc_ij is small against Σ|c_ij| (eq. 7 with D_i ≤ 0, a WLS fit on a
     // lopsided stencil, or eq. 7 with negative weights where the WLS fit failed) can make the
     // PPE locally near-singular: the K&O dam break at L/40 reached 10⁸ Pa and blew up from such
@@ -184,7 +203,7 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
     const bool weak = opt.min_dominance > 0.0 && (dominance(c, nbr.size()) < opt.min_dominance ||
                                                   ((flags & op_negative) && !(flags & op_wls)));
     if (weak && !nbr.empty()) {
-      clamped_offset_laplacian<D>(x, nbr, i, h, ops.renormalisation[i] * o, omega, c);
+      clamped_offset_laplacian<D>(x, nbr, i, ops.renormalisation[i] * o, scratch.kernel, c);
       flags = static_cast<std::uint8_t>((flags & ~op_wls) | op_clamped);
     }
     ops.flags[i] = flags;
