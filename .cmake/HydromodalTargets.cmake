@@ -27,6 +27,10 @@ function(hm_add_stage name)
 endfunction()
 
 # hm_add_test(<name> SOURCES ... DEPS ... [LABELS ...]) — one GoogleTest binary, every case in ctest.
+# Each case runs on 2 OpenMP threads (the parallel loops are exercised) whose idle threads sleep
+# instead of spinning: with ctest -j2 two such cases share the 2 cores, and libgomp's spinning
+# threads then took the cases 5-8x their time alone (a 14.7 s case took 82 s beside a 17.5 s
+# one, which took 84 s; with OMP_WAIT_POLICY=PASSIVE 15.8 and 33.0 s).
 function(hm_add_test name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
@@ -34,5 +38,6 @@ function(hm_add_test name)
   target_compile_definitions(${name} PRIVATE HM_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
                                              HM_BINARY_DIR="${PROJECT_BINARY_DIR}")
   gtest_discover_tests(${name} DISCOVERY_MODE PRE_TEST
-                       PROPERTIES LABELS "${ARG_LABELS}" ENVIRONMENT "OMP_NUM_THREADS=2")
+                       PROPERTIES LABELS "${ARG_LABELS}" ENVIRONMENT "OMP_NUM_THREADS=2"
+                                  ENVIRONMENT_MODIFICATION "OMP_WAIT_POLICY=set:PASSIVE")
 endfunction()
