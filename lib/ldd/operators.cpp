@@ -35,8 +35,8 @@ double weight_at(std::span<const double> omega, Index j) {
 }
 
 /// Per-thread scratch of compute_operators, kept across its points: a row's kernel weights
-/// ω_j W_ij (the clamped eq. 7 reuses them) and the WLS fit's weights and monomials (its
-/// coefficients reuse them: no second square root a pair).
+/// ω_j W_ij from its first pass (eq. 7 and the clamped eq. 7 read them) and the WLS fit's
+/// weights and monomials (its coefficients read them): no second square root a pair.
 template <int D>
 struct RowScratch {
   std::vector<double> kernel, fit_weight;
@@ -78,17 +78,16 @@ bool wls_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index 
   return true;
 }
 
-/// Eq. 7 coefficients of point i into c, which holds each pair's kernel weight ω_j W_ij on
-/// entry (compute_operators' first pass: no second square root a pair); returns whether a
-/// modified weight was negative.
+/// Eq. 7 coefficients of point i into c from each pair's kernel weight ω_j W_ij in `kernel`;
+/// returns whether a modified weight was negative.
 template <int D>
 bool offset_laplacian(std::span<const Vec<D>> x, std::span<const Index> nbr, Index i,
-                      const Vec<D>& Bo, double* c) {
+                      const Vec<D>& Bo, std::span<const double> kernel, double* c) {
   double denominator = 0.0;
   bool negative = false;
   for (std::size_t k = 0; k < nbr.size(); ++k) {
     const Vec<D> r = x[nbr[k]] - x[i];
-    const double w = c[k] * (1.0 - r.dot(Bo));
+    const double w = kernel[k] * (1.0 - r.dot(Bo));
     negative = negative || w < 0.0;
     c[k] = w;
     denominator += w * r.squaredNorm();
@@ -154,7 +153,7 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
 #pragma omp parallel for schedule(dynamic, 128) firstprivate(scratch)
   for (Index i = 0; i < n; ++i) {
     const auto nbr = nb.of(i);
-    double* c = ops.laplacian.data() + nb.offsets[i];  // the pairs' kernel weights, then eq. 7
+    double* c = ops.laplacian.data() + nb.offsets[i];  // the row's Laplacian coefficients
     scratch.kernel.resize(nbr.size());
     Mat<D> A = Mat<D>::Zero();
     Vec<D> o = Vec<D>::Zero();
@@ -162,7 +161,6 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
     for (std::size_t k = 0; k < nbr.size(); ++k) {
       const Vec<D> r = x[nbr[k]] - x[i];
       const double d = r.norm(), w = ops.weight_of(nbr[k]) * wendland_c2(d / h);
-      c[k] = w;
       scratch.kernel[k] = w;
       A.noalias() += w * r * r.transpose();
       o += w * r;
@@ -173,8 +171,7 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
     ops.offset[i] = o;
     ops.offset_ratio[i] = moment > 0.0 ? o.norm() / moment : 1.0;
     if (static_cast<int>(nbr.size()) < min_neighbours || A.trace() <= 0.0) {
-      ops.flags[i] = op_isolated;
-      std::fill(c, c + nbr.size(), 0.0);  // no Laplacian
+      ops.flags[i] = op_isolated;  // no Laplacian: its coefficients stay zero
       continue;
     }
     const Mat<D> M = D * A / A.trace();
@@ -191,7 +188,8 @@ Operators<D> compute_operators(std::span<const Vec<D>> x, const Neighbours& nb,
     } else {
       ops.renormalisation[i] = A.inverse();
     }
-    if (offset_laplacian<D>(x, nbr, i, ops.renormalisation[i] * o, c)) flags |= op_negative;
+    if (offset_laplacian<D>(x, nbr, i, ops.renormalisation[i] * o, scratch.kernel, c))
+      flags |= op_negative;
     const bool want_wls = opt.laplacian == LaplacianScheme::wls_everywhere ||
                           (opt.laplacian == LaplacianScheme::wls_where_needed &&
                            ((flags & op_negative) || ops.offset_ratio[i] > opt.one_sided_offset));
